@@ -168,6 +168,13 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
      * as its last (culled backs), and with two chunks a thread the pool's
      * stealing could not even that out. */
     int chunks = ctx->threads == 1 ? 1 : ctx->threads * SR_CHUNKS_PER_THREAD;
+    /* A draw of a few primitives (a glTF node's part, an instance) takes a
+     * single chunk, set up on this thread: waking the pool and binning
+     * chunks * tiles counters cost more than its front end.  The tile jobs
+     * read the chunks in submission order, so the cut changes no pixel. */
+    if (prims < SR_SMALL_DRAW_PRIMS) {
+        chunks = 1;
+    }
     sr_scratch *s = ctx->scratch;
     size_t post_count = fused ? 0 : (window ? window : span);
     if (!sr__scratch_reserve(&ctx->allocator, s, post_count, ds.nvary,
@@ -213,7 +220,8 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
         size_t jobs = (span + 4095) / 4096;
         size_t fine = span / 256 < threads * 8 ? span / 256 : threads * 8;
         jobs = jobs > fine ? jobs : fine;
-        jobs = (jobs + threads - 1) / threads * threads;
+        /* One job (run on this thread, no wake-up) for fewer than 512. */
+        jobs = jobs > 1 ? (jobs + threads - 1) / threads * threads : 1;
         vertex_job vj = { &ds, d, &mvp, &mv, &nm, s, base, span, (span + jobs - 1) / jobs, 0,
                           !ranged, { 0 } };
         vj.jobs = (span + vj.per_job - 1) / vj.per_job;
@@ -247,7 +255,7 @@ sr_result sr_draw(sr_context *ctx, sr_framebuffer *fb, const sr_state *state,
     size_t batch_size = (prims + batches - 1) / batches;
     for (size_t begin = 0; begin < prims && !oom; begin += batch_size) {
         size_t end = prims - begin < batch_size ? prims : begin + batch_size;
-        split_batch(s, begin, end, ctx->threads, chunks);
+        split_batch(s, begin, end, chunks == 1 ? 1 : ctx->threads, chunks);
         sr__pool_run(ctx->pool, sr__run_front_end, &fe, chunks);
         sr__bin_rasterize(ctx, &ds, chunks, fe.tri_size);
         for (int ci = 0; ci < chunks; ci++) {

@@ -30,6 +30,10 @@
  * order, in 10 KiB for Phong's 80 bytes a vertex. */
 #define SR_VERTEX_WINDOW 128
 #define SR_MAX_CHUNKS (SR_CHUNKS_PER_THREAD * SR_MAX_THREADS)
+/* Draws of fewer primitives are set up as one chunk by the calling thread
+ * (sr_draw): their front end, some 500 instructions a triangle, costs
+ * less than waking the pool's workers for it. */
+#define SR_SMALL_DRAW_PRIMS 64
 
 /* One front-end chunk: a contiguous range of primitives, the triangles it
  * set up (records of tri_size bytes) and its bins by counting sort -
@@ -51,7 +55,11 @@ typedef struct sr_chunk {
     size_t box_cap;
     uint32_t *refs;
     size_t ref_cap;
-    uint32_t *bin_start;       /* tile_cap + 1 */
+    uint32_t *bin_start;       /* tile_cap + 1, valid from bin_lo to bin_hi */
+    /* The tiles, in row order, from the first to one past the last that
+     * the chunk's primitives reach (sr__bin_chunk): bins outside are empty,
+     * whatever bin_start holds there. */
+    uint32_t bin_lo, bin_hi;
     bool scattered;            /* few neighbours share a tile (sr__bin_chunk) */
     bool in_tile_order;        /* the tile jobs read ordered[], not refs[] */
     /* This batch's records went out by streaming stores (sr__run_front_end). */

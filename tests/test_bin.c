@@ -4,8 +4,9 @@
  * prefetch pixels - when most primitives start over a tile away from the
  * one before, and only then; a scattered chunk of records streamed out to
  * memory is copied in tile order when its primitives lie mostly in one
- * tile; and the streaming copy of a record (scratch.h) writes exactly its
- * bytes. */
+ * tile; a chunk's bins span only the tiles from the first to the last its
+ * primitives reach, whatever the counters outside hold; and the streaming
+ * copy of a record (scratch.h) writes exactly its bytes. */
 #include "sr_test.h"
 #include "context.h"
 #include "parallel/bin.h"
@@ -51,9 +52,14 @@ static bin_flags bin_and_check(const uint32_t *boxes, uint32_t n, bool streamed)
     sr_chunk c = { 0 };
     c.tile_box = (uint32_t *)boxes;
     c.tri_count = n;
-    c.bin_start = calloc(TILES_X * TILES_Y + 1, sizeof(uint32_t));
+    c.bin_start = malloc((TILES_X * TILES_Y + 1) * sizeof(uint32_t));
     c.tris = aligned_alloc(64, (size_t)n * RECORD);
     bool ok = c.bin_start && c.tris;
+    if (c.bin_start) {
+        /* What an earlier draw's bins may have left: binning sets the
+         * counters of the tiles it spans and no others. */
+        memset(c.bin_start, 0xa5, (TILES_X * TILES_Y + 1) * sizeof(uint32_t));
+    }
     for (uint32_t i = 0; ok && i < n; i++) {
         for (int w = 0; w < RECORD / 4; w++) {
             memcpy(c.tris + (size_t)i * RECORD + 4 * w, &i, 4);
@@ -61,16 +67,20 @@ static bin_flags bin_and_check(const uint32_t *boxes, uint32_t n, bool streamed)
     }
     ok = ok && sr__bin_chunk(ctx, &ds, &c, RECORD, streamed);
     CHECK(ok);
+    CHECK(c.bin_lo <= c.bin_hi && c.bin_hi <= TILES_X * TILES_Y);
     for (int tile = 0; ok && tile < TILES_X * TILES_Y; tile++) {
         int tx = tile % TILES_X, ty = tile / TILES_X;
-        uint32_t r = c.bin_start[tile];
+        /* Outside the span a bin is empty (parallel/bin.c reads none). */
+        bool spanned = (uint32_t)tile >= c.bin_lo && (uint32_t)tile < c.bin_hi;
+        uint32_t r = spanned ? c.bin_start[tile] : 0;
+        uint32_t end = spanned ? c.bin_start[tile + 1] : 0;
         for (uint32_t i = 0; i < n; i++) {
             uint32_t b = boxes[i];
             bool covers = tx >= (int)(b & 0xff) && tx <= (int)(b >> 8 & 0xff) &&
                           ty >= (int)(b >> 16 & 0xff) && ty <= (int)(b >> 24);
             if (covers) {
                 /* The next of this tile, in submission order. */
-                CHECK(r < c.bin_start[tile + 1]);
+                CHECK(r < end);
                 if (c.in_tile_order) {
                     CHECK(memcmp(c.ordered + (size_t)r * RECORD, c.tris + (size_t)i * RECORD,
                                  RECORD) == 0);
@@ -80,7 +90,7 @@ static bin_flags bin_and_check(const uint32_t *boxes, uint32_t n, bool streamed)
                 r++;
             }
         }
-        CHECK_EQ(r, c.bin_start[tile + 1]);
+        CHECK_EQ(r, end);
     }
     f.scattered = c.scattered;
     f.in_tile_order = c.in_tile_order;
@@ -144,6 +154,36 @@ SR_TEST(scattered_streamed_chunks_are_copied_in_tile_order)
     bin_flags f = bin_and_check(boxes, PRIMS, true);
     CHECK(f.scattered);
     CHECK(!f.in_tile_order);
+}
+
+/* A few primitives in one corner of the target (a small draw's) span
+ * the tiles from their first to their last in row order, and no more;
+ * none span nothing. */
+SR_TEST(bins_span_the_tiles_the_primitives_reach)
+{
+    uint32_t boxes[3] = { box(7, 8, 3, 3), box(4, 5, 4, 5), box(9, 9, 2, 2) };
+    sr_chunk c = { 0 };
+    c.tile_box = boxes;
+    c.tri_count = 3;
+    c.bin_start = calloc(TILES_X * TILES_Y + 1, sizeof(uint32_t));
+    REQUIRE(c.bin_start);
+    sr_context *ctx = NULL;
+    REQUIRE(sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx) == SR_OK);
+    sr_draw_state ds = { 0 };
+    ds.tiles_x = TILES_X;
+    ds.tiles_y = TILES_Y;
+    CHECK(sr__bin_chunk(ctx, &ds, &c, RECORD, false));
+    CHECK_EQ(c.bin_lo, 2 * TILES_X + 9);
+    CHECK_EQ(c.bin_hi, 5 * TILES_X + 5 + 1);
+    CHECK_EQ(c.bin_start[c.bin_hi] - c.bin_start[c.bin_lo], 2 + 4 + 1);
+    c.tri_count = 0;
+    CHECK(sr__bin_chunk(ctx, &ds, &c, RECORD, false));
+    CHECK_EQ(c.bin_lo, c.bin_hi);
+    sr__free(ctx, c.refs);
+    free(c.bin_start);
+    sr_destroy_context(ctx);
+    /* The primitives in the span, placed where their boxes say. */
+    bin_and_check(boxes, 3, false);
 }
 
 /* sr__stream_record writes exactly the record's bytes, whatever the

@@ -194,6 +194,71 @@ SR_TEST(quantized_and_normalized_attributes_are_decoded)
     sr_destroy_scene(sr_test_ctx(), s);
 }
 
+/* Float attributes interleaved in one view (32 bytes a vertex: position,
+ * normal, texture coordinates) and indices of unsigned ints and shorts
+ * from an offset in their views: each element from its own place. */
+SR_TEST(interleaved_floats_and_offset_indices_are_read_in_place)
+{
+    enum { STRIDE = 32 };
+    uint8_t bin[3 * STRIDE + 4 + 12 + 2 + 6] = {0};
+    for (int v = 0; v < 3; v++) {
+        float pos[3] = { (float)v, 10.0f + v, -0.5f * v };
+        float nrm[3] = { v == 0, v == 1, v == 2 };
+        float uv[2] = { 0.25f * v, 1.0f - 0.125f * v };
+        le_copy(bin + STRIDE * v, pos, 3, 4);
+        le_copy(bin + STRIDE * v + 12, nrm, 3, 4);
+        le_copy(bin + STRIDE * v + 24, uv, 2, 4);
+    }
+    const uint32_t i32[3] = { 2, 1, 0 };
+    const uint16_t i16[3] = { 1, 2, 0 };
+    le_copy(bin + 3 * STRIDE + 4, i32, 3, 4);
+    le_copy(bin + 3 * STRIDE + 4 + 12 + 2, i16, 3, 2);
+    char body[2000];
+    snprintf(body, sizeof body,
+             ",\"bufferViews\":[{\"buffer\":0,\"byteLength\":%d,\"byteStride\":%d},"
+             "{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":24}],"
+             "\"accessors\":["
+             "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+             "\"min\":[0,10,-1],\"max\":[2,12,0]},"
+             "{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC3\"},"
+             "{\"bufferView\":0,\"byteOffset\":24,\"componentType\":5126,\"count\":3,"
+             "\"type\":\"VEC2\"},"
+             "{\"bufferView\":1,\"byteOffset\":4,\"componentType\":5125,\"count\":3,"
+             "\"type\":\"SCALAR\"},"
+             "{\"bufferView\":1,\"byteOffset\":18,\"componentType\":5123,\"count\":3,"
+             "\"type\":\"SCALAR\"}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,"
+             "\"TEXCOORD_0\":2},\"indices\":3},{\"attributes\":{\"POSITION\":0},"
+             "\"indices\":4}]}],"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]",
+             3 * STRIDE, STRIDE, 3 * STRIDE);
+    warnings w = {0};
+    sr_scene *s = load_doc(bin, sizeof bin, body, &w);
+    REQUIRE(s);
+    REQUIRE(s->primitive_count == 2);
+    for (int k = 0; k < 2; k++) {
+        const sr_scene_primitive *p = &s->primitives[k];
+        REQUIRE(p->vertex_count == 3 && p->triangle_count == 1);
+        for (int v = 0; v < 3; v++) {
+            CHECK_EQ(p->positions[3 * v], (float)v);
+            CHECK_EQ(p->positions[3 * v + 1], 10.0f + v);
+            CHECK_EQ(p->positions[3 * v + 2], -0.5f * v);
+            CHECK_EQ(p->indices[v], k == 0 ? i32[v] : i16[v]);
+        }
+    }
+    const sr_scene_primitive *p = &s->primitives[0];
+    for (int v = 0; v < 3; v++) {
+        for (int c = 0; c < 3; c++) {
+            CHECK_EQ(p->normals[3 * v + c], (float)(v == c));
+        }
+        /* v flipped to sr_make_texture's convention. */
+        CHECK_EQ(p->texcoords0[2 * v], 0.25f * v);
+        CHECK_EQ(p->texcoords0[2 * v + 1], 0.125f * v);
+    }
+    sr_destroy_scene(sr_test_ctx(), s);
+}
+
 SR_TEST(sparse_accessors_replace_elements_with_or_without_a_buffer_view)
 {
     uint8_t bin[64] = {0};

@@ -1436,7 +1436,8 @@ static void tiny_triangles(sr_rng *rng, int first, int n, bool walk, int w, int 
  * one-primitive chunks are never scattered.  Triangles with blending
  * (order matters), depth-tested points and, beside them, short lines,
  * each as one draw in batches of 1,024 and of the default size, on 1, 2
- * and 3 threads. */
+ * and 3 threads, and one draw per primitive on 3 threads too (each then
+ * one chunk, binned over its own tiles, after draws elsewhere). */
 SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
 {
     /* 10 x 6 tiles: two random primitives in a row mostly start over a
@@ -1460,14 +1461,16 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
         corners[i] = (uint32_t)(3 * i);
     }
     static const sr_primitive prims[] = { SR_PRIM_TRIANGLES, SR_PRIM_POINTS, SR_PRIM_LINES };
-    /* Variant 0, the reference, draws one primitive at a time. */
-    static const int batch[] = { 0, SR_BATCH_MIN, 0, 0, 0, SR_BATCH_MIN };
-    static const int threads[] = { 1, 1, 1, 2, 3, 2 };
+    /* Variants 0, the reference, and 6 draw one primitive at a time. */
+    enum { VARIANTS = 7 };
+    static const int batch[VARIANTS] = { 0, SR_BATCH_MIN, 0, 0, 0, SR_BATCH_MIN, 0 };
+    static const int threads[VARIANTS] = { 1, 1, 1, 2, 3, 2, 3 };
     uint8_t *first = malloc(W * H * 4);
     REQUIRE(first);
     for (int k = 0; k < 3; k++) {
         bool copied = false;
-        for (int v = 0; v < 6; v++) {
+        for (int v = 0; v < VARIANTS; v++) {
+            bool each = v == 0 || v == 6;
             sr_context *ctx;
             REQUIRE(sr_make_context(&(sr_context_desc){ .threads = threads[v],
                                                         .batch_primitives = batch[v] },
@@ -1493,13 +1496,13 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
                 d.index_count = prims[k] == SR_PRIM_LINES ? 2 * N : N;
             }
             bool copies = false;
-            for (int i = 0; i < (v == 0 ? N : 1); i++) {
+            for (int i = 0; i < (each ? N : 1); i++) {
                 sr_draw_desc one = d;
-                if (v == 0 && prims[k] == SR_PRIM_TRIANGLES) {
+                if (each && prims[k] == SR_PRIM_TRIANGLES) {
                     one.positions = pos + 9 * i;
                     one.colors = col + 12 * i;
                     one.vertex_count = 3;
-                } else if (v == 0) {
+                } else if (each) {
                     size_t first_index = prims[k] == SR_PRIM_LINES ? 2 * (size_t)i : (size_t)i;
                     one.indices = (const uint32_t *)d.indices + first_index;
                     one.index_count = prims[k] == SR_PRIM_LINES ? 2 : 1;
@@ -1509,8 +1512,10 @@ SR_TEST(primitives_copied_in_tile_order_give_the_bytes_of_numbered_bins)
                     copies |= ctx->scratch->chunks[ci].in_tile_order;
                 }
             }
-            if (v == 0) {
+            if (each) {
                 CHECK(!copies);
+            }
+            if (v == 0) {
                 memcpy(first, sr_framebuffer_pixels(fb), W * H * 4);
             } else if (memcmp(first, sr_framebuffer_pixels(fb), W * H * 4) != 0) {
                 sr_test_fail(__FILE__, __LINE__, "primitive %d: %d threads, batch %d differ from "

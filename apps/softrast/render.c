@@ -11,6 +11,7 @@
 #include "render_gltf.h"
 #include "render_lights.h"
 #include "render_options.h"
+#include "render_programs.h"
 #include "render_shadow.h"
 #include "render_textures.h"
 #include "render_transmission.h"
@@ -461,6 +462,8 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
             if (per_part && pass == 2 && !order) {
                 return SR_OUT_OF_MEMORY;
             }
+            /* A glTF material's program, made for its first part here. */
+            render_programs programs = { 0 };
             for (size_t k = 0; k < parts && r == SR_OK; k++) {
                 size_t p = order ? order[k] : k;
                 const sr_pbr_material *gm =
@@ -485,9 +488,10 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                 /* The glTF parts that follow with the same material and
                  * the next triangles (a primitive's EXT_mesh_gpu_instancing
                  * instances, or nodes repeating one mesh) are one draw: a
-                 * draw shades only its own vertices, but each still makes
-                 * a program and runs the thread pool's stages, which adds
-                 * up over tens of thousands of small instances.
+                 * draw shades only its own vertices and shares its
+                 * material's program, but each still validates and
+                 * resolves its state and visits its tiles, which adds up
+                 * over tens of thousands of small instances.
                  * Not where the parts are sorted back to front. */
                 while (gltf && !order && !see_through && k + 1 < parts &&
                        ob->part_material[k + 1] == ob->part_material[p] &&
@@ -543,6 +547,7 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     sorted = sorted_indices(ctx, ob, cam, first, count);
                     if (!sorted) {
                         free(order);
+                        render_programs_clear(ctx, &programs);
                         return SR_OUT_OF_MEMORY;
                     }
                     indices = sorted;
@@ -553,7 +558,11 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                                            .dst_alpha = SR_BLEND_ONE_MINUS_SRC_ALPHA };
                 }
                 sr_pbr *program = NULL;
-                if (pbr) {
+                size_t material = gm ? (size_t)ob->part_material[p] + 1 : 0;
+                if (pbr && material) {
+                    program = render_programs_find(&programs, material);
+                }
+                if (pbr && !program) {
                     sr_pbr_material m = gm ? *gm
                                        : pbr_material(o, ob, st.texture, by_part ? p : SIZE_MAX);
                     if (gm && given) {
@@ -583,8 +592,14 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     if (r != SR_OK) {
                         free(sorted);
                         free(order);
+                        render_programs_clear(ctx, &programs);
                         return r;
                     }
+                    if (material) {
+                        render_programs_keep(ctx, &programs, material, program);
+                    }
+                }
+                if (program) {
                     st.program = sr_pbr_program(program);
                 }
                 r = sr_draw(ctx, fb, &st, &(sr_draw_desc){
@@ -594,11 +609,14 @@ static sr_result draw_scene(const render_opts *o, const sr_environment *env,
                     .indices = indices, .index_type = SR_INDEX_U32, .index_count = count * 3,
                     .model = &ob->model, .view = &cam->view, .projection = &cam->proj });
                 free(sorted);
-                sr_destroy_pbr_program(ctx, program);
+                if (!material) {
+                    sr_destroy_pbr_program(ctx, program);
+                }
                 sr_draw_info info = sr_last_draw_info(ctx);
                 *tris += info.triangles_in;
                 *frags += info.fragments;
             }
+            render_programs_clear(ctx, &programs);
             free(order);
         }
     }

@@ -51,10 +51,10 @@ void sr__gltf_warn(gltf_doc *d, const char *fmt, ...)
 
 /* ---- JSON members -------------------------------------------------------- */
 
-sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
-                        size_t lo, size_t hi, bool required, size_t *out)
+/* sr__gltf_size of the member v (NULL: absent), looked up by the caller. */
+static sr_result size_member(gltf_doc *d, const json_t *v, const char *ptr, const char *key,
+                             size_t lo, size_t hi, bool required, size_t *out)
 {
-    json_t *v = json_object_get(obj, key);
     if (!v) {
         return required ? sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: missing", ptr, key) : SR_OK;
     }
@@ -70,6 +70,12 @@ sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const c
     }
     *out = (size_t)i;
     return SR_OK;
+}
+
+sr_result sr__gltf_size(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
+                        size_t lo, size_t hi, bool required, size_t *out)
+{
+    return size_member(d, json_object_get(obj, key), ptr, key, lo, hi, required, out);
 }
 
 sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,
@@ -88,7 +94,7 @@ sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const 
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/%s: %.0f is not an index below %zu", ptr, key,
                              value, limit);
     }
-    sr_result r = sr__gltf_size(d, obj, ptr, key, 0, limit - 1, required, &v);
+    sr_result r = size_member(d, m, ptr, key, 0, limit - 1, required, &v);
     if (r == SR_OK && m) {
         *out = (long)v;
     }
@@ -180,7 +186,7 @@ static sr_result element(gltf_doc *d, const char *key, long i, const char *use, 
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: %s %ld does not exist (%zu of them)", use, key,
                              i, n);
     }
-    snprintf(ptr, cap, "/%s/%ld", key, i);
+    sr__json_pointer(ptr, cap, "/%s/%ld", key, i);
     *out = json_array_get(arr, (size_t)i);
     if (!json_is_object(*out)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
@@ -313,7 +319,7 @@ static sr_result load_buffer(gltf_doc *d, long i, const char *use, gltf_buffer *
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/uri: not a string", ptr);
         }
         char uptr[GLTF_PTR];
-        snprintf(uptr, sizeof uptr, "%s/uri", ptr);
+        sr__json_pointer(uptr, sizeof uptr, "%s/uri", ptr);
         if ((r = sr__gltf_read_uri(d, json_string_value(uri), uptr, &buf->owned,
                           &buf->owned_size, &buf->from_file)) != SR_OK) {
             return r;
@@ -390,7 +396,7 @@ sr_result sr__gltf_buffer_view(gltf_doc *d, long view, const char *use, const ui
         }
     }
     char bptr[GLTF_PTR];
-    snprintf(bptr, sizeof bptr, "%s/buffer", ptr);
+    sr__json_pointer(bptr, sizeof bptr, "%s/buffer", ptr);
     gltf_buffer *b;
     if ((r = load_buffer(d, buffer, bptr, &b)) != SR_OK) {
         return r;
@@ -475,7 +481,7 @@ static sr_result attribute(gltf_doc *d, const json_t *attrs, const char *aptr, c
         return r;
     }
     char ptr[GLTF_PTR];
-    snprintf(ptr, sizeof ptr, "%s/%s", aptr, name);
+    sr__json_pointer(ptr, sizeof ptr, "%s/%s", aptr, name);
     float *f;
     if ((r = sr__gltf_read_floats(d, index, ptr, allowed, info, &f)) != SR_OK) {
         return r;
@@ -557,7 +563,7 @@ static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
         return SR_OK;
     }
     char aptr[GLTF_PTR];
-    snprintf(aptr, sizeof aptr, "%s/attributes", ptr);
+    sr__json_pointer(aptr, sizeof aptr, "%s/attributes", ptr);
     if (!json_object_get(attrs, "POSITION")) {
         sr__gltf_warn(d, "%s: no POSITION, not drawn", aptr);
         return SR_OK;
@@ -607,7 +613,7 @@ static sr_result read_arrays(gltf_doc *d, const json_t *prim, const char *ptr,
         memcpy(idx, draco_corners, count * sizeof *idx);
     } else if (indices >= 0) {
         char iptr[GLTF_PTR];
-        snprintf(iptr, sizeof iptr, "%s/indices", ptr);
+        sr__json_pointer(iptr, sizeof iptr, "%s/indices", ptr);
         if ((r = sr__gltf_read_indices(d, indices, iptr, &info, &idx)) != SR_OK) {
             return r;
         }
@@ -681,7 +687,7 @@ static sr_result mesh_of(gltf_doc *d, gltf_mesh *meshes, long m, const char *use
     meshes[m].count = n;
     for (size_t i = 0; i < n; i++) {
         char pptr[GLTF_PTR];
-        snprintf(pptr, sizeof pptr, "%s/primitives/%zu", ptr, i);
+        sr__json_pointer(pptr, sizeof pptr, "%s/primitives/%zu", ptr, i);
         sr_scene_primitive *p = &meshes[m].prims[i];
         p->mesh = (int)m;
         if ((r = read_primitive(d, json_array_get(prims, i), pptr, p, &meshes[m].pose[i])) !=
@@ -805,7 +811,7 @@ sr_result sr__gltf_node_world(gltf_doc *d, long node, float world[16])
         long v = d->node_chain[--depth], up = d->node_parent[v];
         char ptr[GLTF_PTR];
         float local[16];
-        snprintf(ptr, sizeof ptr, "/nodes/%ld", v);
+        sr__json_pointer(ptr, sizeof ptr, "/nodes/%ld", v);
         sr_result r = local_matrix(d, json_array_get(nodes, (size_t)v), v, ptr, false, local);
         if (r != SR_OK) {
             return r;
@@ -837,7 +843,7 @@ static sr_result read_camera(gltf_doc *d, long index, const char *use, sr_scene_
     if ((r = sr__gltf_object(d, cam, ptr, t, &p)) != SR_OK) {
         return r;
     }
-    snprintf(sub, sizeof sub, "%s/%s", ptr, t);
+    sr__json_pointer(sub, sizeof sub, "%s/%s", ptr, t);
     if (!p) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: missing", sub);
     }
@@ -884,7 +890,7 @@ static sr_result node_parents(gltf_doc *d, const json_t *nodes, size_t n, long *
         char ptr[GLTF_PTR];
         json_t *node = json_array_get(nodes, i), *children;
         size_t k;
-        snprintf(ptr, sizeof ptr, "/nodes/%zu", i);
+        sr__json_pointer(ptr, sizeof ptr, "/nodes/%zu", i);
         if (!json_is_object(node)) {
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", ptr);
         }
@@ -946,13 +952,13 @@ static sr_result pose_primitive(gltf_doc *d, const gltf_mesh *m, size_t i, long 
                                 sr_scene_primitive *p)
 {
     char pptr[GLTF_PTR], use[GLTF_PTR];
-    snprintf(pptr, sizeof pptr, "/meshes/%ld/primitives/%zu", mesh, i);
+    sr__json_pointer(pptr, sizeof pptr, "/meshes/%ld/primitives/%zu", mesh, i);
     sr_result r = SR_OK;
     if (m->pose[i].target_count > 0) {
         r = sr__gltf_morph(d, &m->pose[i], weights, ptr, p);
     }
     if (r == SR_OK && skin >= 0) {
-        snprintf(use, sizeof use, "/nodes/%ld/skin", node_index);
+        sr__json_pointer(use, sizeof use, "/nodes/%ld/skin", node_index);
         r = sr__gltf_skin(d, skin, use, &m->pose[i], pptr, p);
     }
     return r;
@@ -997,7 +1003,7 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
                            size_t instance_count)
 {
     char use[GLTF_PTR];
-    snprintf(use, sizeof use, "%s/mesh", ptr);
+    sr__json_pointer(use, sizeof use, "%s/mesh", ptr);
     gltf_mesh *m;
     sr_result r = mesh_of(d, meshes, mesh, use, &m);
     if (r != SR_OK) {
@@ -1070,7 +1076,7 @@ static sr_result add_draws(gltf_doc *d, gltf_mesh *meshes, long node_index, cons
      * is read before its slot is taken, and its world (the node's, or
      * the identity of a skinned draw) stays the base until then. */
     char eptr[GLTF_PTR];
-    snprintf(eptr, sizeof eptr, "%s/extensions/EXT_mesh_gpu_instancing", ptr);
+    sr__json_pointer(eptr, sizeof eptr, "%s/extensions/EXT_mesh_gpu_instancing", ptr);
     size_t vertices = 0, triangles = 0;
     for (size_t j = 0; j < made; j++) {
         vertices += d->scene->primitives[first + j].vertex_count;
@@ -1148,7 +1154,7 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
     while (r == SR_OK && top > 0) {
         walk_item it = stack[--top];
         char ptr[GLTF_PTR];
-        snprintf(ptr, sizeof ptr, "/nodes/%ld", it.node);
+        sr__json_pointer(ptr, sizeof ptr, "/nodes/%ld", it.node);
         json_t *node = json_array_get(nodes, (size_t)it.node), *children;
         float local[16], world[16];
         long mesh = -1, camera = -1, skin = -1;
@@ -1189,7 +1195,7 @@ static sr_result walk_nodes(gltf_doc *d, const json_t *roots, const char *roots_
             sr_scene_camera *c = sr__scene_grow(d->scene, (void **)&d->scene->cameras,
                                                 &d->scene->camera_count, sizeof *c, 1);
             char use[GLTF_PTR];
-            snprintf(use, sizeof use, "%s/camera", ptr);
+            sr__json_pointer(use, sizeof use, "%s/camera", ptr);
             if (!c) {
                 r = sr__gltf_fail(d, SR_OUT_OF_MEMORY, "%s: out of memory", ptr);
                 break;
@@ -1255,13 +1261,13 @@ static sr_result read_nodes(gltf_doc *d)
     json_t *all = NULL;
     if (r == SR_OK && scene >= 0) {
         json_t *s = json_array_get(scenes, (size_t)scene);
-        snprintf(rptr, sizeof rptr, "/scenes/%ld", scene);
+        sr__json_pointer(rptr, sizeof rptr, "/scenes/%ld", scene);
         size_t n;
         if (!json_is_object(s)) {
             r = sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", rptr);
         } else {
             r = sr__gltf_array(d, s, rptr, "nodes", &roots, &n);
-            snprintf(rptr, sizeof rptr, "/scenes/%ld/nodes", scene);
+            sr__json_pointer(rptr, sizeof rptr, "/scenes/%ld/nodes", scene);
         }
     } else if (r == SR_OK) {
         all = roots = json_array();

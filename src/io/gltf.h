@@ -125,6 +125,7 @@ sr_result sr__gltf_fail(gltf_doc *d, sr_result code, const char *fmt, ...)
 /* A warning "NAME: reason" to desc->warn, counted in the scene. */
 void sr__gltf_warn(gltf_doc *d, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+
 /* Reading the JSON.  `ptr` is the JSON pointer of obj.  Absent members
  * leave *out at the caller's default and succeed, unless required. */
 sr_result sr__gltf_index(gltf_doc *d, const json_t *obj, const char *ptr, const char *key,

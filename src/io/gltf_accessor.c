@@ -126,7 +126,7 @@ static sr_result describe(gltf_doc *d, long index, const char *use, gltf_accesso
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld does not exist (%zu accessors)",
                              use, index, n);
     }
-    snprintf(aptr, aptr_cap, "/accessors/%ld", index);
+    sr__json_pointer(aptr, aptr_cap, "/accessors/%ld", index);
     json_t *a = json_array_get(accessors, (size_t)index);
     if (!json_is_object(a)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", aptr);
@@ -233,7 +233,7 @@ static sr_result open_accessor(gltf_doc *d, long index, const char *use, gltf_ac
     }
     if (view >= 0) {
         char vptr[GLTF_PTR];
-        snprintf(vptr, sizeof vptr, "%s/bufferView", aptr);
+        sr__json_pointer(vptr, sizeof vptr, "%s/bufferView", aptr);
         const uint8_t *data;
         size_t size, stride;
         if ((r = sr__gltf_buffer_view(d, view, vptr, &data, &size, &stride)) != SR_OK) {
@@ -305,9 +305,9 @@ static sr_result apply_sparse(gltf_doc *d, const json_t *sparse, const char *apt
                               const gltf_accessor_info *info, const layout *dense, sink *s)
 {
     char ptr[GLTF_PTR], iptr[GLTF_PTR], vptr[GLTF_PTR];
-    snprintf(ptr, sizeof ptr, "%s/sparse", aptr);
-    snprintf(iptr, sizeof iptr, "%s/indices", ptr);
-    snprintf(vptr, sizeof vptr, "%s/values", ptr);
+    sr__json_pointer(ptr, sizeof ptr, "%s/sparse", aptr);
+    sr__json_pointer(iptr, sizeof iptr, "%s/indices", ptr);
+    sr__json_pointer(vptr, sizeof vptr, "%s/values", ptr);
     size_t count = 0;
     json_t *indices, *values;
     sr_result r;
@@ -340,11 +340,11 @@ static sr_result apply_sparse(gltf_doc *d, const json_t *sparse, const char *apt
     char bptr[GLTF_PTR];
     const uint8_t *idata, *vdata;
     size_t isize, vsize, unused;
-    snprintf(bptr, sizeof bptr, "%s/bufferView", iptr);
+    sr__json_pointer(bptr, sizeof bptr, "%s/bufferView", iptr);
     if ((r = sr__gltf_buffer_view(d, iview, bptr, &idata, &isize, &unused)) != SR_OK) {
         return r;
     }
-    snprintf(bptr, sizeof bptr, "%s/bufferView", vptr);
+    sr__json_pointer(bptr, sizeof bptr, "%s/bufferView", vptr);
     if ((r = sr__gltf_buffer_view(d, vview, bptr, &vdata, &vsize, &unused)) != SR_OK) {
         return r;
     }
@@ -386,17 +386,40 @@ static sr_result apply_sparse(gltf_doc *d, const json_t *sparse, const char *apt
     return SR_OK;
 }
 
-/* Decode accessor `index` into s (allocated here, count * n entries). */
-static sr_result decode(gltf_doc *d, long index, const char *use, gltf_accessor_info *info,
-                        sink *s, bool as_float)
-{
+/* An accessor opened for decoding: its dense part, its sparse part (or
+ * NULL), its pointer, and the element budget before it was charged. */
+typedef struct opened {
     layout l;
     json_t *sparse;
     char aptr[GLTF_PTR];
-    sr_result r = open_accessor(d, index, use, info, &l, &sparse, aptr, sizeof aptr);
-    if (r != SR_OK) {
-        return r;
-    }
+    size_t budget;
+} opened;
+
+/* Refuses an opened accessor's type: the budget is charged by decoding
+ * alone. */
+static sr_result refuse(gltf_doc *d, const opened *o, sr_result r)
+{
+    d->elements_left = o->budget;
+    return r;
+}
+
+/* Opens accessor `index` once, for the caller's checks of its type and
+ * then the decoding: describing it (its members, its bufferView's, the
+ * pointers of their messages) cost as much as decoding a small one. */
+static sr_result open_once(gltf_doc *d, long index, const char *ptr, gltf_accessor_info *info,
+                           opened *o)
+{
+    o->budget = d->elements_left;
+    sr_result r = open_accessor(d, index, ptr, info, &o->l, &o->sparse, o->aptr, sizeof o->aptr);
+    return r == SR_OK ? r : refuse(d, o, r);
+}
+
+/* Decode the opened accessor into s (allocated here, count * n entries). */
+static sr_result decode(gltf_doc *d, const opened *o, const gltf_accessor_info *info, sink *s,
+                        bool as_float)
+{
+    const char *aptr = o->aptr;
+    sr_result r = SR_OK;
     size_t n = as_float ? (size_t)info->components : 1, bytes;
     if (!sr__mul_ok(info->count, n * 4, &bytes)) {
         return sr__gltf_fail(d, SR_TOO_LARGE, "%s/count: too large", aptr);
@@ -410,13 +433,34 @@ static sr_result decode(gltf_doc *d, long index, const char *use, gltf_accessor_
     } else {
         s->u = block;
     }
-    double v[16];
-    for (size_t i = 0; i < info->count; i++) {
-        read_element(&l, info, i, v);
-        store(s, i, v, (int)n);
+    const layout *l = &o->l;
+    if (as_float && info->component_type == 5126 && l->rows == 0 && l->base) {
+        /* Float vectors, the common vertex attribute, as they are: the
+         * general path's round trip through double gives the same
+         * floats at several times the cost. */
+        for (size_t i = 0; i < info->count; i++) {
+            const uint8_t *e = l->base + i * l->stride;
+            for (size_t c = 0; c < n; c++) {
+                s->f[i * n + c] = sr__le_float(e + 4 * c);
+            }
+        }
+    } else if (!as_float && info->component_type == 5123 && l->base) {
+        for (size_t i = 0; i < info->count; i++) {
+            s->u[i] = sr__le16(l->base + i * l->stride);
+        }
+    } else if (!as_float && info->component_type == 5125 && l->base) {
+        for (size_t i = 0; i < info->count; i++) {
+            s->u[i] = sr__le32(l->base + i * l->stride);
+        }
+    } else {
+        double v[16];
+        for (size_t i = 0; i < info->count; i++) {
+            read_element(l, info, i, v);
+            store(s, i, v, (int)n);
+        }
     }
-    if (sparse) {
-        r = apply_sparse(d, sparse, aptr, info, &l, s);
+    if (o->sparse) {
+        r = apply_sparse(d, o->sparse, aptr, info, &o->l, s);
     }
     if (r == SR_OK && as_float && info->component_type == 5126) {
         for (size_t i = 0; i < info->count * n; i++) {
@@ -435,42 +479,34 @@ static sr_result decode(gltf_doc *d, long index, const char *use, gltf_accessor_
     return r;
 }
 
-/* The accessor's description alone, for checking its type before
- * decoding (the budget is charged once, by the decoding). */
-static sr_result peek(gltf_doc *d, long index, const char *ptr, gltf_accessor_info *info)
-{
-    layout l;
-    json_t *sparse;
-    char aptr[GLTF_PTR];
-    size_t budget = d->elements_left;
-    sr_result r = open_accessor(d, index, ptr, info, &l, &sparse, aptr, sizeof aptr);
-    d->elements_left = budget;
-    return r;
-}
-
 sr_result sr__gltf_read_floats(gltf_doc *d, long index, const char *ptr, unsigned allowed,
                                gltf_accessor_info *info, float **out)
 {
     sink s = {0};
+    opened o;
     *out = NULL;
-    sr_result r = peek(d, index, ptr, info);
+    sr_result r = open_once(d, index, ptr, info, &o);
     if (r != SR_OK) {
         return r;
     }
     if (info->matrix) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld holds matrices, not vectors", ptr,
-                             index);
+        return refuse(d, &o, sr__gltf_fail(d, SR_BAD_FORMAT,
+                                           "%s: accessor %ld holds matrices, not vectors", ptr,
+                                           index));
     }
     if (!(allowed & (1u << info->components))) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld has %d components per element, "
-                             "not what this attribute takes", ptr, index, info->components);
+        return refuse(d, &o, sr__gltf_fail(d, SR_BAD_FORMAT,
+                                           "%s: accessor %ld has %d components per element, "
+                                           "not what this attribute takes",
+                                           ptr, index, info->components));
     }
     if (info->component_type == 5125) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s: accessor %ld has unsigned int components, which no vertex "
-                             "attribute takes", ptr, index);
+        return refuse(d, &o, sr__gltf_fail(d, SR_BAD_FORMAT,
+                                           "%s: accessor %ld has unsigned int components, "
+                                           "which no vertex attribute takes",
+                                           ptr, index));
     }
-    r = decode(d, index, ptr, info, &s, true);
+    r = decode(d, &o, info, &s, true);
     *out = s.f;
     return r;
 }
@@ -479,19 +515,21 @@ sr_result sr__gltf_read_indices(gltf_doc *d, long index, const char *ptr,
                                 gltf_accessor_info *info, uint32_t **out)
 {
     sink s = {0};
+    opened o;
     *out = NULL;
-    sr_result r = peek(d, index, ptr, info);
+    sr_result r = open_once(d, index, ptr, info, &o);
     if (r != SR_OK) {
         return r;
     }
     if (info->components != 1 || info->normalized ||
         (info->component_type != 5121 && info->component_type != 5123 &&
          info->component_type != 5125)) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT,
-                             "%s: accessor %ld is not a SCALAR of unsigned bytes, shorts or "
-                             "ints", ptr, index);
+        return refuse(d, &o, sr__gltf_fail(d, SR_BAD_FORMAT,
+                                           "%s: accessor %ld is not a SCALAR of unsigned bytes, "
+                                           "shorts or ints",
+                                           ptr, index));
     }
-    r = decode(d, index, ptr, info, &s, false);
+    r = decode(d, &o, info, &s, false);
     *out = s.u;
     return r;
 }
@@ -500,16 +538,18 @@ sr_result sr__gltf_read_mat4(gltf_doc *d, long index, const char *ptr, gltf_acce
                              float **out)
 {
     sink s = {0};
+    opened o;
     *out = NULL;
-    sr_result r = peek(d, index, ptr, info);
+    sr_result r = open_once(d, index, ptr, info, &o);
     if (r != SR_OK) {
         return r;
     }
     if (!info->matrix || info->components != 16 || info->component_type != 5126) {
-        return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: accessor %ld is not a MAT4 of floats", ptr,
-                             index);
+        return refuse(d, &o, sr__gltf_fail(d, SR_BAD_FORMAT,
+                                           "%s: accessor %ld is not a MAT4 of floats", ptr,
+                                           index));
     }
-    r = decode(d, index, ptr, info, &s, true);
+    r = decode(d, &o, info, &s, true);
     *out = s.f;
     return r;
 }

@@ -91,7 +91,7 @@ static sr_result check_counts(gltf_doc *d, const json_t *attrs, const char *aptr
             }
             long idx = -1;
             char ptr[GLTF_PTR];
-            snprintf(ptr, sizeof ptr, "%s/%s", aptr, name);
+            sr__json_pointer(ptr, sizeof ptr, "%s/%s", aptr, name);
             gltf_accessor_info info;
             if ((r = sr__gltf_index(d, attrs, aptr, name, (size_t)-1 / 2, true, &idx)) != SR_OK ||
                 (r = sr__gltf_accessor_info(d, idx, ptr, &info)) != SR_OK) {
@@ -131,8 +131,8 @@ sr_result sr__gltf_read_instances(gltf_doc *d, const json_t *node, const char *p
         return SR_OK;
     }
     char eptr[GLTF_PTR], aptr[GLTF_PTR];
-    snprintf(eptr, sizeof eptr, "%s/extensions/" INSTANCING, ptr);
-    snprintf(aptr, sizeof aptr, "%s/attributes", eptr);
+    sr__json_pointer(eptr, sizeof eptr, "%s/extensions/" INSTANCING, ptr);
+    sr__json_pointer(aptr, sizeof aptr, "%s/attributes", eptr);
     if (!json_is_object(ext)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", eptr);
     }
@@ -163,7 +163,7 @@ sr_result sr__gltf_read_instances(gltf_doc *d, const json_t *node, const char *p
             continue;
         }
         char tptr[GLTF_PTR];
-        snprintf(tptr, sizeof tptr, "%s/%s", aptr, transform_names[t]);
+        sr__json_pointer(tptr, sizeof tptr, "%s/%s", aptr, transform_names[t]);
         gltf_accessor_info info;
         const char *want;
         if ((r = sr__gltf_accessor_info(d, index[t], tptr, &info)) != SR_OK) {

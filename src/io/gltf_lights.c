@@ -77,7 +77,7 @@ static sr_result read_light(gltf_doc *d, const json_t *obj, const char *ptr, glt
         return SR_OK;
     }
     char sub[GLTF_PTR];
-    snprintf(sub, sizeof sub, "%s/spot", ptr);
+    sr__json_pointer(sub, sizeof sub, "%s/spot", ptr);
     if (!spot) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: missing", sub);
     }
@@ -125,7 +125,7 @@ sr_result sr__gltf_read_lights(gltf_doc *d)
     d->light_count = n;
     for (size_t i = 0; i < n; i++) {
         char lptr[GLTF_PTR];
-        snprintf(lptr, sizeof lptr, "%s/lights/%zu", ptr, i);
+        sr__json_pointer(lptr, sizeof lptr, "%s/lights/%zu", ptr, i);
         if ((r = read_light(d, json_array_get(lights, i), lptr, &d->lights[i])) != SR_OK) {
             return r;
         }
@@ -140,7 +140,7 @@ sr_result sr__gltf_place_light(gltf_doc *d, const json_t *node, const char *ptr,
     long index = -1;
     sr_result r;
     char eptr[GLTF_PTR];
-    snprintf(eptr, sizeof eptr, "%s/extensions/" EXT, ptr);
+    sr__json_pointer(eptr, sizeof eptr, "%s/extensions/" EXT, ptr);
     if (!ext) {
         if (json_object_get(json_object_get(node, "extensions"), EXT)) {
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", eptr);

@@ -53,7 +53,7 @@ sr_result sr__gltf_read_targets(gltf_doc *d, const json_t *prim, const char *ptr
     for (size_t t = 0; t < n; t++) {
         char tptr[GLTF_PTR], aptr[GLTF_PTR];
         json_t *target = json_array_get(targets, t);
-        snprintf(tptr, sizeof tptr, "%s/targets/%zu", ptr, t);
+        sr__json_pointer(tptr, sizeof tptr, "%s/targets/%zu", ptr, t);
         if (!json_is_object(target)) {
             return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", tptr);
         }
@@ -66,7 +66,7 @@ sr_result sr__gltf_read_targets(gltf_doc *d, const json_t *prim, const char *ptr
             if (index < 0) {
                 continue;
             }
-            snprintf(aptr, sizeof aptr, "%s/%s", tptr, names[k]);
+            sr__json_pointer(aptr, sizeof aptr, "%s/%s", tptr, names[k]);
             gltf_accessor_info info;
             /* Tangent deltas move xyz alone: the handedness stays the base's. */
             if ((r = sr__gltf_read_floats(d, index, aptr, 1u << 3, &info,
@@ -152,12 +152,12 @@ sr_result sr__gltf_node_rest_weights(gltf_doc *d, long node_index, long mesh, fl
         out[i] = 0;
     }
     json_t *node = json_array_get(json_object_get(d->root, "nodes"), (size_t)node_index);
-    snprintf(ptr, sizeof ptr, "/nodes/%ld", node_index);
+    sr__json_pointer(ptr, sizeof ptr, "/nodes/%ld", node_index);
     sr_result r = weights_of(d, node, ptr, n, out, &found);
     if (r != SR_OK || found) {
         return r;
     }
-    snprintf(ptr, sizeof ptr, "/meshes/%ld", mesh);
+    sr__json_pointer(ptr, sizeof ptr, "/meshes/%ld", mesh);
     return weights_of(d, json_array_get(json_object_get(d->root, "meshes"), (size_t)mesh), ptr,
                       n, out, &found);
 }

@@ -65,7 +65,7 @@ static sr_result read_mapping(gltf_doc *d, const json_t *m, const char *eptr, si
     json_t *vars;
     size_t k;
     long material = -1;
-    snprintf(mptr, sizeof mptr, "%s/mappings/%zu", eptr, i);
+    sr__json_pointer(mptr, sizeof mptr, "%s/mappings/%zu", eptr, i);
     if (!json_is_object(m)) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s: not an object", mptr);
     }
@@ -82,7 +82,7 @@ static sr_result read_mapping(gltf_doc *d, const json_t *m, const char *eptr, si
     if (!vars || k == 0) {
         return sr__gltf_fail(d, SR_BAD_FORMAT, "%s/variants: missing or empty", mptr);
     }
-    snprintf(vptr, sizeof vptr, "%s/variants", mptr);
+    sr__json_pointer(vptr, sizeof vptr, "%s/variants", mptr);
     for (size_t j = 0; j < k; j++) {
         json_t *e = json_array_get(vars, j);
         json_int_t v = json_is_integer(e) ? json_integer_value(e) : -1;
@@ -111,7 +111,7 @@ sr_result sr__gltf_primitive_variants(gltf_doc *d, const json_t *prim, const cha
     size_t count, n = d->scene->variant_count;
     sr_result r;
     char eptr[GLTF_PTR];
-    snprintf(eptr, sizeof eptr, "%s/extensions/" EXT, ptr);
+    sr__json_pointer(eptr, sizeof eptr, "%s/extensions/" EXT, ptr);
     if (!ext) {
         return SR_OK;
     }

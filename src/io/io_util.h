@@ -33,6 +33,12 @@ sr_result sr__io_message(sr_io_error *err, sr_result code, const char *fmt, ...)
 void sr__last_error_save(sr_io_error *saved);
 sr_result sr__last_error_keep(sr_result r, const sr_io_error *saved);
 
+/* snprintf(out, cap, fmt, ...) for the JSON pointers a reader builds for
+ * the elements it walks (json_pointer.c): formats of %s, %d, %ld and %zu
+ * alone, cut as snprintf cuts. */
+void sr__json_pointer(char *out, size_t cap, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
 /* Open a regular file for reading: *f and its size, or a message naming
  * the file ("cannot open: ...", "is a directory, not KIND", with KIND
  * such as "a PNG file", or "not a regular file").  Never waits for

@@ -71,12 +71,29 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
 {
     size_t tiles = (size_t)ds->tiles_x * ds->tiles_y;
     uint32_t *start = c->bin_start;
-    memset(start, 0, (tiles + 1) * sizeof(uint32_t));
+    size_t tiles_x = (size_t)ds->tiles_x;
+    const uint32_t *box = c->tile_box;
+    /* The bins from the first tile the primitives reach to the last, in
+     * row order: a small draw's binning then costs its own tiles, not
+     * the target's (a node of a few triangles among 1280x720's 60 tiles). */
+    size_t lo = c->tri_count ? tiles : 0, hi = 0;
+    for (uint32_t i = 0; i < c->tri_count; i++) {
+        if (box[i] == SR_TILE_BOX_WALK) {
+            lo = 0;
+            hi = tiles;
+            break;
+        }
+        size_t first = (size_t)(box[i] >> 16 & 0xff) * tiles_x + (box[i] & 0xff);
+        size_t last = (size_t)(box[i] >> 24) * tiles_x + (box[i] >> 8 & 0xff);
+        lo = first < lo ? first : lo;
+        hi = last + 1 > hi ? last + 1 : hi;
+    }
+    c->bin_lo = (uint32_t)lo;
+    c->bin_hi = (uint32_t)hi;
+    memset(start + lo, 0, (hi - lo + 1) * sizeof(uint32_t));
     /* Count into start[tile + 1], prefix-sum, then place in order.  Most
      * primitives lie in one tile: one step, no loops. */
-    size_t tiles_x = (size_t)ds->tiles_x;
     size_t total = 0;
-    const uint32_t *box = c->tile_box;
     uint32_t far = 0;     /* primitives starting over a tile away from the one before */
     for (uint32_t i = 0; i < c->tri_count; i++) {
         if (i > 0) {
@@ -124,11 +141,11 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
                        total <= SIZE_MAX / tri_size &&
                        sr__chunk_reserve_ordered(&ctx->allocator, c, total * tri_size);
     if (total > UINT32_MAX || (!c->in_tile_order && !sr__chunk_reserve_refs(&ctx->allocator, c, total))) {
-        memset(start, 0, (tiles + 1) * sizeof(uint32_t));
+        c->bin_lo = c->bin_hi = 0;
         c->in_tile_order = false;
         return false;
     }
-    for (size_t k = 0; k < tiles; k++) {
+    for (size_t k = lo; k < hi; k++) {
         start[k + 1] += start[k];
     }
     /* Fill using start[tile] as a cursor, then shift back. */
@@ -154,10 +171,10 @@ bool sr__bin_chunk(sr_context *ctx, const sr_draw_state *ds, sr_chunk *c, size_t
     if (c->in_tile_order) {
         sr__stream_fence();
     }
-    for (size_t k = tiles; k > 0; k--) {
+    for (size_t k = hi; k > lo; k--) {
         start[k] = start[k - 1];
     }
-    start[0] = 0;
+    start[lo] = 0;
     return true;
 }
 
@@ -231,6 +248,9 @@ static inline __attribute__((always_inline)) void
 draw_bin(const tile_job *tj, const sr_chunk *c, uint32_t tile, tile_rect b, sr_frag_stats *st,
          tile_rect *drawn, bool ordered)
 {
+    if (tile < c->bin_lo || tile >= c->bin_hi) {
+        return;
+    }
     const sr_draw_state *ds = tj->ds;
     size_t size = tj->tri_size;
     uint32_t end = c->bin_start[tile + 1];
@@ -300,11 +320,18 @@ static void run_tile(void *arg, int job, int thread)
 void sr__bin_rasterize(sr_context *ctx, const sr_draw_state *ds, int chunks, size_t tri_size)
 {
     sr_scratch *s = ctx->scratch;
-    uint32_t tiles = (uint32_t)(ds->tiles_x * ds->tiles_y), active = 0;
-    for (uint32_t k = 0; k < tiles; k++) {
+    uint32_t lo = UINT32_MAX, hi = 0, active = 0;
+    for (int ci = 0; ci < chunks; ci++) {
+        const sr_chunk *c = &s->chunks[ci];
+        if (c->bin_lo < c->bin_hi) {
+            lo = c->bin_lo < lo ? c->bin_lo : lo;
+            hi = c->bin_hi > hi ? c->bin_hi : hi;
+        }
+    }
+    for (uint32_t k = lo; k < hi; k++) {
         for (int ci = 0; ci < chunks; ci++) {
             const sr_chunk *c = &s->chunks[ci];
-            if (c->bin_start[k + 1] != c->bin_start[k]) {
+            if (k >= c->bin_lo && k < c->bin_hi && c->bin_start[k + 1] != c->bin_start[k]) {
                 s->active_tiles[active++] = k;
                 break;
             }
