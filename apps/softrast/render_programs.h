@@ -8,9 +8,10 @@
 
 #include <stddef.h>
 
-/* Programs kept at most: a program holds its prefiltered radiance maps in
- * the context's cache (fragment/oct_cache.c), whose 32 entries a larger
- * table would pin. */
+/* Programs kept at most: a program pins its prefiltered radiance maps in
+ * the context's cache (fragment/oct_cache.c), which evicts only maps no
+ * live program reads; 32 stay within the embedded profile's budget of 32
+ * maps, which a larger table could fill with pinned maps. */
 #define RENDER_PROGRAM_SLOTS 32
 
 /* Programs by key (a glTF material's number), key % RENDER_PROGRAM_SLOTS
