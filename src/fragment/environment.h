@@ -219,6 +219,9 @@ void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, in
 #define SR__SPEC_SCALES      6
 #define SR__PREFILTER_TEXELS 0.35f
 #define SR__PREFILTER_RING   8.0f
+/* The widest mip a level reads: its core's for roughness 0.2 (texels 0.35
+ * alpha = 0.014 apart need 512 columns). */
+#define SR__SPLIT_MAX        512
 typedef struct sr__spec_plan {
     float a2;                   /* alpha^2 */
     int scales;
@@ -253,7 +256,7 @@ extern const float sr__brdf_builtin[SR__BRDF_TABLE_SIZE][SR__BRDF_TABLE_SIZE][2]
 extern const float *const sr__studio_builtin_levels[SR_ENVIRONMENT_LEVELS];
 extern const float sr__studio_builtin_sh[9];
 
-/* GGX sampling shared by the table and the prefilter: the half vector of
+/* GGX sampling for the BRDF table (brdf_integrate.c): the half vector of
  * the 2D point (e1, e2) in [0, 1)^2 for alpha, in tangent space (z along N). */
 static inline void sr__ggx_half_vector(float e1, float e2, float alpha, float h[3])
 {

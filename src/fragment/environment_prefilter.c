@@ -173,7 +173,7 @@ void sr__specular_plan(float roughness, const sr__equirect *mip, int mips, sr__s
      * weight must not move much across one, even where N.L falls to 0. */
     float fine = fminf(SR__PREFILTER_TEXELS * alpha, SR__PI / 64.0f);
     int m = 0;
-    while (m + 1 < mips && texel_angle(&mip[m + 1]) <= fine) {
+    while (m + 1 < mips && (texel_angle(&mip[m + 1]) <= fine || mip[m].w > SR__SPLIT_MAX)) {
         m++;
     }
     /* A narrow lobe's far tail is faint even at the horizon (for roughness
@@ -211,26 +211,20 @@ static float window(float theta, float radius)
     return x >= 1.0f ? 0.0f : 1.0f - x * x * (3.0f - 2.0f * x);
 }
 
-/* out[i] += wt * src[(x + step * q) mod w] for the texels i = q * phases + phase
- * of a level row: one source texel's share in every texel of the row. */
-static void add_texel(float *restrict out, const float *restrict src, int src_w, int x, int step,
-                      int phases, int phase, int count, float wt)
+/* Source row `row` (w texels) as `step` rows of its columns r, r + step,
+ * ..., each twice over (2 * count texels, count = w / step), so that the
+ * texels from column x on are one run: rows[x % step] + 3 * (x / step). */
+static void split_row(const float *restrict row, int w, int step, float *restrict rows)
 {
-    int split = (src_w - x + step - 1) / step;
-    split = split < count ? split : count;
-    for (int q = 0; q < split; q++) {
-        const float *s = src + 3 * (x + step * q);
-        float *o = out + 3 * (q * phases + phase);
-        o[0] += wt * s[0];
-        o[1] += wt * s[1];
-        o[2] += wt * s[2];
-    }
-    for (int q = split; q < count; q++) {
-        const float *s = src + 3 * (x + step * q - src_w);
-        float *o = out + 3 * (q * phases + phase);
-        o[0] += wt * s[0];
-        o[1] += wt * s[1];
-        o[2] += wt * s[2];
+    int count = w / step;
+    for (int r = 0; r < step; r++) {
+        float *o = rows + (size_t)r * 6 * count;
+        for (int q = 0; q < 2 * count; q++) {
+            const float *t = row + 3 * (r + step * (q < count ? q : q - count));
+            o[3 * q] = t[0];
+            o[3 * q + 1] = t[1];
+            o[3 * q + 2] = t[2];
+        }
     }
 }
 
@@ -238,7 +232,8 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         int row0, int row1)
 {
     assert(dst->w <= SR__LEVEL_MAX_WIDTH);
-    float sum[SR__LEVEL_MAX_WIDTH * 3];
+    float sum[SR__LEVEL_MAX_WIDTH * 3], part[SR__LEVEL_MAX_WIDTH * 3];
+    float split[SR__SPLIT_MAX * 6];
     double wsum[SR__LEVEL_MAX_WIDTH], phase_w[SR__LEVEL_MAX_WIDTH];
     const float a2 = p->a2;
     for (int j = row0; j < row1; j++) {
@@ -260,7 +255,10 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
             int phases = dst->w > m->w ? dst->w / m->w : 1;
             int step = m->w > dst->w ? m->w / dst->w : 1;
             int count = dst->w / phases;
+            assert(m->w <= SR__SPLIT_MAX);
             memset(phase_w, 0, sizeof(double) * (size_t)phases);
+            /* part: texel q * phases + ph of the row at 3 * (ph * count + q) */
+            memset(part, 0, sizeof(float) * 3 * (size_t)dst->w);
             for (int y = 0; y < m->h; y++) {
                 double theta = SR__PI_D * (y + 0.5) / m->h;
                 if (fabs(theta - theta_n) > reach) {
@@ -272,7 +270,7 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                 double dphi = k <= -1.0 ? SR__PI_D : acos(fmin(k, 1.0));
                 int half = (int)(dphi / (2.0 * SR__PI_D) * m->w) + 2;
                 float omega = (float)(2.0 * SR__PI_D / m->w * band_omega(y, y + 1, m->h));
-                const float *row = m->rgb + (size_t)y * m->w * 3;
+                int split_done = 0;
                 for (int ph = 0; ph < phases; ph++) {
                     /* the source column nearest texel ph of the level row */
                     double centre = (ph + 0.5) / dst->w * m->w - 0.5;
@@ -296,13 +294,27 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         if (wt <= 0.0f) {
                             continue;
                         }
+                        if (!split_done) {
+                            split_row(m->rgb + (size_t)y * m->w * 3, m->w, step, split);
+                            split_done = 1;
+                        }
                         phase_w[ph] += wt;
-                        add_texel(sum, row, m->w, x, step, phases, ph, count, wt);
+                        /* its share in every texel of the row: one run */
+                        const float *restrict src = split + (size_t)(x % step) * 6 * count +
+                                                    3 * (x / step);
+                        float *restrict o = part + (size_t)ph * 3 * count;
+                        for (int e = 0; e < 3 * count; e++) {
+                            o[e] += wt * src[e];
+                        }
                     }
                 }
             }
             for (int i = 0; i < dst->w; i++) {
-                wsum[i] += phase_w[i % phases];
+                int ph = i % phases, q = i / phases;
+                wsum[i] += phase_w[ph];
+                for (int c = 0; c < 3; c++) {
+                    sum[3 * i + c] += part[3 * (ph * count + q) + c];
+                }
             }
         }
         float *o = dst->rgb + (size_t)j * dst->w * 3;
