@@ -140,9 +140,14 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
     const sr__equirect *src = &env->level[0];
     int base = sr__mip_base_width(src->w);
     sr__equirect mip[SR__ENV_MAX_MIPS] = { *src };
-    int mips = sr__mip_count(base);
-    /* mip[0] is the source itself when it is the base's size */
+    /* mip[0] is the source itself when it is the base's size; a resampled
+     * one need not be wider than the widest mip a level reads (a 32768 x 1
+     * image must not make a 32768 x 16384 one) */
     bool resampled = src->w != base || src->h != base / 2;
+    if (resampled && base > 2 * SR__SPLIT_MAX) {
+        base = 2 * SR__SPLIT_MAX;
+    }
+    int mips = sr__mip_count(base);
     sr_result r = SR_OK;
     if (resampled) {
         if (!alloc_image(ctx, &mip[0], base, base / 2)) {

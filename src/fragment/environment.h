@@ -22,8 +22,9 @@ typedef struct sr__equirect {
 } sr__equirect;
 
 /* Mips of the source, each texel the mean over its solid angle, down to
- * SR__MIP_MIN_WIDTH wide; the first is the source resampled to
- * sr__mip_base_width x half that, unless it is that size already. */
+ * SR__MIP_MIN_WIDTH wide; the first is the source itself when it is
+ * sr__mip_base_width x half that, else the source resampled to that size
+ * (at most 2 * SR__SPLIT_MAX wide). */
 #define SR__ENV_MAX_MIPS    16
 #define SR__MIP_MIN_WIDTH   8
 /* The SH are projected from the first mip at most this wide. */
