@@ -818,9 +818,10 @@ typedef struct sr_environment_desc {
                               * mapping, pi/2 moves what was at +X to -Z */
 } sr_environment_desc;
 
-/* Prefilter an environment: the source's box-filtered mip chain, the
- * diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi and
- * Hanrahan) and the GGX-importance-sampled specular levels.  Runs on ctx's
+/* Prefilter an environment: the source's solid-angle-weighted mip chain,
+ * the diffuse irradiance as 9 spherical-harmonic coefficients (Ramamoorthi
+ * and Hanrahan) and the specular levels, the source convolved with the GGX
+ * lobe of each level's roughness (docs/ibl.md).  Runs on ctx's
  * threads; the result is the same for any thread count.  desc may be NULL
  * (the built-in studio, whose levels and SH were computed when the library
  * was built: making it only copies them).  Release it with

@@ -47,13 +47,13 @@ int main(int argc, char **argv)
         return 2;
     }
     /* The studio's source image and its mips, as from_image's prefilter
-     * makes them (environment.c). */
+     * makes them (environment.c); it is the first mip's size already. */
     sr__equirect mip[SR__ENV_MAX_MIPS];
     int mips = sr__mip_count(SR__STUDIO_WIDTH);
     mip[0] = make_image(SR__STUDIO_WIDTH, SR__STUDIO_HEIGHT);
     sr__studio_rows(&mip[0], 0, mip[0].h);
     for (int m = 1; m < mips; m++) {
-        mip[m] = make_image(mip[m - 1].w / 2, mip[m - 1].h > 1 ? mip[m - 1].h / 2 : 1);
+        mip[m] = make_image(mip[m - 1].w / 2, mip[m - 1].h / 2);
         sr__equirect_halve(&mip[m - 1], &mip[m], 0, mip[m].h);
     }
     float sh[9][3];
@@ -62,11 +62,9 @@ int main(int argc, char **argv)
     for (int k = 1; k < SR_ENVIRONMENT_LEVELS; k++) {
         int lw = sr__level_width(mip[0].w, k);
         level[k] = make_image(lw, lw / 2);
-        sr__spec_sample s[SR__SPEC_SAMPLES];
-        int count;
-        sr__specular_samples((float)k / (SR_ENVIRONMENT_LEVELS - 1), mip[0].w, mip[0].h, mips, s,
-                             &count);
-        sr__prefilter_rows(mip, s, count, &level[k], 0, level[k].h);
+        sr__spec_plan plan;
+        sr__specular_plan((float)k / (SR_ENVIRONMENT_LEVELS - 1), mip, mips, &plan);
+        sr__prefilter_rows(mip, &plan, &level[k], 0, level[k].h);
     }
 
     char tmp[4096];

@@ -26,8 +26,7 @@ typedef struct prefilter_job {
 typedef struct prefilter_work {
     sr_environment *env;
     const sr__equirect *mip;
-    sr__spec_sample samples[SR_ENVIRONMENT_LEVELS][SR__SPEC_SAMPLES];
-    int counts[SR_ENVIRONMENT_LEVELS];
+    sr__spec_plan plans[SR_ENVIRONMENT_LEVELS];
     prefilter_job *jobs;
     float intensity;
     const float *pixels;        /* the caller's image */
@@ -79,13 +78,20 @@ static void halve_job(void *arg, int job, int thread)
                        band_end(job, COPY_ROWS, w->half_dst->h));
 }
 
+static void resample_job(void *arg, int job, int thread)
+{
+    (void)thread;
+    prefilter_work *w = arg;
+    sr__equirect_resample(w->half_src, w->half_dst, job * COPY_ROWS,
+                          band_end(job, COPY_ROWS, w->half_dst->h));
+}
+
 static void level_job(void *arg, int job, int thread)
 {
     (void)thread;
     prefilter_work *w = arg;
     const prefilter_job *j = &w->jobs[job];
-    sr__prefilter_rows(w->mip, w->samples[j->level], w->counts[j->level],
-                       &w->env->level[j->level], j->row0, j->row1);
+    sr__prefilter_rows(w->mip, &w->plans[j->level], &w->env->level[j->level], j->row0, j->row1);
 }
 
 static sr_result validate(sr_context *ctx, const sr_environment_desc *d)
@@ -131,12 +137,29 @@ static float *alloc_image(sr_context *ctx, sr__equirect *e, int w, int h)
 static sr_result prefilter(sr_context *ctx, prefilter_work *w)
 {
     sr_environment *env = w->env;
-    sr__equirect mip[SR__ENV_MAX_MIPS] = { env->level[0] };
-    int mips = sr__mip_count(mip[0].w);
+    const sr__equirect *src = &env->level[0];
+    int base = sr__mip_base_width(src->w);
+    sr__equirect mip[SR__ENV_MAX_MIPS] = { *src };
+    /* mip[0] is the source itself when it is the base's size; a resampled
+     * one need not be wider than the widest mip a level reads (a 32768 x 1
+     * image must not make a 32768 x 16384 one) */
+    bool resampled = src->w != base || src->h != base / 2;
+    if (resampled && base > 2 * SR__SPLIT_MAX) {
+        base = 2 * SR__SPLIT_MAX;
+    }
+    int mips = sr__mip_count(base);
     sr_result r = SR_OK;
+    if (resampled) {
+        if (!alloc_image(ctx, &mip[0], base, base / 2)) {
+            return SR_OUT_OF_MEMORY;
+        }
+        w->half_src = src;
+        w->half_dst = &mip[0];
+        sr_run_jobs(ctx, resample_job, w, (mip[0].h + COPY_ROWS - 1) / COPY_ROWS);
+    }
     for (int m = 1; m < mips; m++) {
-        const sr__equirect *src = &mip[m - 1];
-        if (!alloc_image(ctx, &mip[m], src->w / 2, src->h > 1 ? src->h / 2 : 1)) {
+        src = &mip[m - 1];
+        if (!alloc_image(ctx, &mip[m], src->w / 2, src->h / 2)) {
             mips = m;
             r = SR_OUT_OF_MEMORY;
             goto done;
@@ -155,8 +178,7 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
             goto done;
         }
         jobs += (lw / 2 + BAND_ROWS - 1) / BAND_ROWS;
-        float roughness = (float)k / (SR_ENVIRONMENT_LEVELS - 1);
-        sr__specular_samples(roughness, mip[0].w, mip[0].h, mips, w->samples[k], &w->counts[k]);
+        sr__specular_plan((float)k / (SR_ENVIRONMENT_LEVELS - 1), mip, mips, &w->plans[k]);
     }
     w->jobs = sr__alloc(ctx, (size_t)jobs * sizeof *w->jobs);
     if (!w->jobs) {
@@ -174,7 +196,7 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
     sr_run_jobs(ctx, level_job, w, n);
     sr__free(ctx, w->jobs);
 done:
-    for (int m = 1; m < mips; m++) {
+    for (int m = resampled ? 0 : 1; m < mips; m++) {
         sr__free(ctx, mip[m].rgb);
     }
     return r;

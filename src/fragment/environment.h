@@ -21,7 +21,10 @@ typedef struct sr__equirect {
     float *rgb;
 } sr__equirect;
 
-/* Box-filtered mips of the source, down to SR__MIP_MIN_WIDTH wide. */
+/* Mips of the source, each texel the mean over its solid angle, down to
+ * SR__MIP_MIN_WIDTH wide; the first is the source itself when it is
+ * sr__mip_base_width x half that, else the source resampled to that size
+ * (at most 2 * SR__SPLIT_MAX wide). */
 #define SR__ENV_MAX_MIPS    16
 #define SR__MIP_MIN_WIDTH   8
 /* The SH are projected from the first mip at most this wide. */
@@ -36,7 +39,18 @@ typedef struct sr__equirect {
 #define SR__STUDIO_WIDTH    256
 #define SR__STUDIO_HEIGHT   128
 
-/* How many mips a source w pixels wide has, itself included. */
+/* The first mip's width for a source w wide: a power of two (the levels'
+ * and the mips' widths then divide each other), at most w, at least 64. */
+static inline int sr__mip_base_width(int w)
+{
+    int b = 64;
+    while (b <= w / 2 && b < (1 << 30)) {
+        b *= 2;
+    }
+    return b;
+}
+
+/* How many mips a first mip w pixels wide has, itself included. */
 static inline int sr__mip_count(int w)
 {
     int mips = 1;
@@ -58,11 +72,12 @@ static inline int sr__sh_mip(int w, int mips)
 }
 
 /* The width of specular level k >= 1 (its height is half of it) for a
- * source w wide: half the source's, at most SR__LEVEL_MAX_WIDTH, each next
- * level half as wide, down to SR__LEVEL_MIN_WIDTH. */
+ * source w wide: half the first mip's, at most SR__LEVEL_MAX_WIDTH, each
+ * next level half as wide, down to SR__LEVEL_MIN_WIDTH. */
 static inline int sr__level_width(int w, int k)
 {
-    int first = w / 2 < SR__LEVEL_MAX_WIDTH ? w / 2 : SR__LEVEL_MAX_WIDTH;
+    int b = sr__mip_base_width(w) / 2;
+    int first = b < SR__LEVEL_MAX_WIDTH ? b : SR__LEVEL_MAX_WIDTH;
     int lw = first >> (k - 1);
     return lw > SR__LEVEL_MIN_WIDTH ? lw : SR__LEVEL_MIN_WIDTH;
 }
@@ -188,25 +203,39 @@ void sr__studio_rows(sr__equirect *e, int row0, int row1);
 void sr__irradiance_sh(const sr__equirect *e, float sh[9][3]);
 void sr__irradiance_eval(const float sh[9][3], const float d[3], float out[3]);
 void sr__irradiance_eval4(const float sh[9][3], const sr_vec3x4 *d, sr_vec3x4 *out);
-/* Rows [row0, row1) of dst (its w and h set to src's halves, at least 1)
- * as 2 x 2 boxes of src. */
+/* Rows [row0, row1) of dst, src resampled to dst's size: each texel the
+ * mean of src over its solid angle. */
+void sr__equirect_resample(const sr__equirect *src, sr__equirect *dst, int row0, int row1);
+/* The same for dst exactly half of src each way: 2 x 2 texels, the rows
+ * weighed by their solid angles. */
 void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1);
 
-/* One GGX sample of a specular level: the light direction in tangent
- * space (z along N = V), its weight (N.L) and the source mip to read. */
-#define SR__SPEC_SAMPLES 32
-typedef struct sr__spec_sample {
-    float l[3];
-    float weight;
-    int mip;
-} sr__spec_sample;
-/* The level's samples (at most SR__SPEC_SAMPLES) for a source of
- * source_w x source_h pixels with `mips` mips. */
-void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
-                          sr__spec_sample *s, int *count);
+/* A specular level is the source convolved with the GGX lobe, summed
+ * over mip texels by scales: the lobe's core within `radius` of R on a
+ * fine mip, then rings out to twice each radius on mips four times
+ * coarser, the last (radius infinite) out to the horizon; smooth windows
+ * split the lobe between them.  SR__PREFILTER_TEXELS: the core's mip's
+ * texels at most this times alpha apart; SR__PREFILTER_RING: a scale's
+ * radius in texels of its mip. */
+#define SR__SPEC_SCALES      6
+#define SR__PREFILTER_TEXELS 0.35f
+#define SR__PREFILTER_RING   8.0f
+/* The widest mip a level reads: its core's for roughness 0.2 (texels 0.35
+ * alpha = 0.014 apart need 512 columns). */
+#define SR__SPLIT_MAX        512
+typedef struct sr__spec_plan {
+    float a2;                   /* alpha^2 */
+    int scales;
+    struct {
+        int mip;
+        float radius;
+    } scale[SR__SPEC_SCALES];
+} sr__spec_plan;
+/* The scales of the level for `roughness` from `mips` mips. */
+void sr__specular_plan(float roughness, const sr__equirect *mip, int mips, sr__spec_plan *p);
 /* Rows [row0, row1) of a specular level from the source's mips. */
-void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
-                        sr__equirect *dst, int row0, int row1);
+void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equirect *dst,
+                        int row0, int row1);
 
 /* The split-sum BRDF table: SR__BRDF_TABLE_SIZE nodes along N.V and
  * along roughness, each the (scale, bias) of F0; row `row` (one
@@ -228,7 +257,7 @@ extern const float sr__brdf_builtin[SR__BRDF_TABLE_SIZE][SR__BRDF_TABLE_SIZE][2]
 extern const float *const sr__studio_builtin_levels[SR_ENVIRONMENT_LEVELS];
 extern const float sr__studio_builtin_sh[9];
 
-/* GGX sampling shared by the table and the prefilter: the half vector of
+/* GGX sampling for the BRDF table (brdf_integrate.c): the half vector of
  * the 2D point (e1, e2) in [0, 1)^2 for alpha, in tangent space (z along N). */
 static inline void sr__ggx_half_vector(float e1, float e2, float alpha, float h[3])
 {

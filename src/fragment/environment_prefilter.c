@@ -99,22 +99,55 @@ void sr__irradiance_eval4(const float sh[9][3], const sr_vec3x4 *d, sr_vec3x4 *o
 
 /* ---- source mips ------------------------------------------------------- */
 
-/* dst (w/2 x h/2, at least 1) as 2 x 2 boxes of src; an odd last column or
- * row is folded into its neighbour's box by clamping. */
-void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
+/* The solid angle of the rows of an h-row image between t0 and t1 (rows,
+ * fractional), per unit of u: the mips and the prefilter weigh texels by
+ * it, since a polar row covers far less of the sphere than the equator's. */
+static double band_omega(double t0, double t1, int h)
 {
+    return cos(SR__PI_D * t0 / h) - cos(SR__PI_D * t1 / h);
+}
+
+void sr__equirect_resample(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
+{
+    double sx = (double)src->w / dst->w, sy = (double)src->h / dst->h;
     for (int j = row0; j < row1; j++) {
-        int j0 = 2 * j < src->h ? 2 * j : src->h - 1;
-        int j1 = 2 * j + 1 < src->h ? 2 * j + 1 : src->h - 1;
-        const float *r0 = src->rgb + (size_t)j0 * src->w * 3;
-        const float *r1 = src->rgb + (size_t)j1 * src->w * 3;
+        double t0 = j * sy, t1 = (j + 1) * sy;
         float *o = dst->rgb + (size_t)j * dst->w * 3;
         for (int i = 0; i < dst->w; i++) {
-            int i0 = 2 * i < src->w ? 2 * i : src->w - 1;
-            int i1 = 2 * i + 1 < src->w ? 2 * i + 1 : src->w - 1;
+            double u0 = i * sx, u1 = (i + 1) * sx, acc[3] = { 0, 0, 0 }, wsum = 0;
+            for (int y = (int)t0; y < src->h && y < t1; y++) {
+                double wy = band_omega(fmax(t0, y), fmin(t1, y + 1), src->h);
+                const float *r = src->rgb + (size_t)y * src->w * 3;
+                for (int x = (int)u0; x < src->w && x < u1; x++) {
+                    double wt = wy * (fmin(u1, x + 1) - fmax(u0, x));
+                    for (int c = 0; c < 3; c++) {
+                        acc[c] += wt * r[3 * x + c];
+                    }
+                    wsum += wt;
+                }
+            }
             for (int c = 0; c < 3; c++) {
-                o[3 * i + c] = 0.25f * (r0[3 * i0 + c] + r0[3 * i1 + c] + r1[3 * i0 + c] +
-                                        r1[3 * i1 + c]);
+                o[3 * i + c] = (float)(acc[c] / wsum);
+            }
+        }
+    }
+}
+
+void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
+{
+    assert(src->w == 2 * dst->w && src->h == 2 * dst->h);
+    for (int j = row0; j < row1; j++) {
+        /* each texel the mean over its solid angle: the two source rows
+         * weighed by theirs */
+        double o0 = band_omega(2 * j, 2 * j + 1, src->h), o1 = band_omega(2 * j + 1, 2 * j + 2, src->h);
+        float w0 = (float)(0.5 * o0 / (o0 + o1)), w1 = (float)(0.5 * o1 / (o0 + o1));
+        const float *r0 = src->rgb + (size_t)(2 * j) * src->w * 3;
+        const float *r1 = r0 + (size_t)src->w * 3;
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < dst->w; i++) {
+            for (int c = 0; c < 3; c++) {
+                o[3 * i + c] = w0 * (r0[6 * i + c] + r0[6 * i + 3 + c]) +
+                               w1 * (r1[6 * i + c] + r1[6 * i + 3 + c]);
             }
         }
     }
@@ -122,99 +155,174 @@ void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, in
 
 /* ---- specular levels --------------------------------------------------- */
 
-/* The GGX sample set of one level, in tangent space (N = V = +z). */
-void sr__specular_samples(float roughness, int source_w, int source_h, int mips,
-                          sr__spec_sample *s, int *count)
+/* The angle between two texel centres of mip m: what its texels resolve. */
+static float texel_angle(const sr__equirect *m)
 {
-    /* A narrow lobe needs fewer samples: half as many, each read from a mip
-     * half a level coarser. */
-    int samples = roughness < 0.3f ? SR__SPEC_SAMPLES / 2 : SR__SPEC_SAMPLES;
-    float alpha = roughness * roughness;
-    float a2 = alpha * alpha;
-    /* Karis's mip-filtered sampling: a sample stands for the solid angle
-     * 1 / (n pdf); read the mip whose texels are about that size, one
-     * level blurrier to hide the sample pattern. */
-    float texel_omega = 4.0f * SR__PI / ((float)source_w * (float)source_h);
-    int n = 0;
-    for (int i = 0; i < samples; i++) {
-        float h[3];
-        sr__ggx_half_vector(((float)i + 0.5f) / samples, sr__radical_inverse((unsigned)i), alpha, h);
-        float nl = 2.0f * h[2] * h[2] - 1.0f;
-        if (nl <= 0.0f) {
-            continue;
-        }
-        float nh = h[2];
-        float q = nh * nh * (a2 - 1.0f) + 1.0f;
-        float pdf = a2 / (SR__PI * q * q) / 4.0f;
-        float sample_omega = 1.0f / ((float)samples * pdf + 1e-6f);
-        float lod = 0.5f * log2f(sample_omega / texel_omega) + 1.0f;
-        /* Every texel reads sample i from the same mip, so rounding the
-         * level changes the blur a little but leaves no seams. */
-        int m = (int)(lod + 0.5f);
-        m = m < 0 ? 0 : (m > mips - 1 ? mips - 1 : m);
-        s[n] = (sr__spec_sample){ .l = { 2.0f * h[2] * h[0], 2.0f * h[2] * h[1], nl },
-                                  .weight = nl, .mip = m };
-        n++;
-    }
-    *count = n;
+    return SR__PI / (float)m->h;
 }
 
-void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_sample *s, int count,
-                        sr__equirect *dst, int row0, int row1)
+void sr__specular_plan(float roughness, const sr__equirect *mip, int mips, sr__spec_plan *p)
+{
+    float alpha = roughness * roughness;
+    p->a2 = alpha * alpha;
+    /* The lobe's core (half its peak within about 1.3 alpha of R) on the
+     * coarsest mip that resolves it, but never coarser than 128 x 64;
+     * then wider and wider rings of the long GGX tail, each on a mip four
+     * times coarser, but for a wide lobe never coarser than 128 x 64: a
+     * texel's radiance counts at its centre, and a small bright source's
+     * weight must not move much across one, even where N.L falls to 0. */
+    float fine = fminf(SR__PREFILTER_TEXELS * alpha, SR__PI / 64.0f);
+    int m = 0;
+    while (m + 1 < mips && (texel_angle(&mip[m + 1]) <= fine || mip[m].w > SR__SPLIT_MAX)) {
+        m++;
+    }
+    /* A narrow lobe's far tail is faint even at the horizon (for roughness
+     * 0.4 under 0.3% of its peak at 90 degrees): coarser rings there. */
+    float coarsest = alpha < 0.2f ? SR__PI / 16.0f : SR__PI / 64.0f;
+    int n = 0;
+    for (;;) {
+        float radius = SR__PREFILTER_RING * texel_angle(&mip[m]);
+        int next = m + 2 < mips ? m + 2 : mips - 1;
+        while (next > m && texel_angle(&mip[next]) > coarsest) {
+            next--;
+        }
+        p->scale[n].mip = m;
+        /* N.L is 0 at a quarter turn: a window reaching that far is the
+         * last */
+        bool last = 2.0f * radius >= 0.5f * SR__PI || next == m || n + 1 == SR__SPEC_SCALES;
+        p->scale[n].radius = last ? INFINITY : radius;
+        n++;
+        if (last) {
+            break;
+        }
+        m = next;
+    }
+    p->scales = n;
+}
+
+/* 1 within `radius` of R, 0 beyond twice it, smooth between: the scales'
+ * windows, which add up to 1 everywhere. */
+static float window(float theta, float radius)
+{
+    if (theta <= radius) {
+        return 1.0f;
+    }
+    float x = (theta - radius) / radius;
+    return x >= 1.0f ? 0.0f : 1.0f - x * x * (3.0f - 2.0f * x);
+}
+
+/* Source row `row` (w texels) as `step` rows of its columns r, r + step,
+ * ..., each twice over (2 * count texels, count = w / step), so that the
+ * texels from column x on are one run: rows[x % step] + 3 * (x / step). */
+static void split_row(const float *restrict row, int w, int step, float *restrict rows)
+{
+    int count = w / step;
+    for (int r = 0; r < step; r++) {
+        float *o = rows + (size_t)r * 6 * count;
+        for (int q = 0; q < 2 * count; q++) {
+            const float *t = row + 3 * (r + step * (q < count ? q : q - count));
+            o[3 * q] = t[0];
+            o[3 * q + 1] = t[1];
+            o[3 * q + 2] = t[2];
+        }
+    }
+}
+
+void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equirect *dst,
+                        int row0, int row1)
 {
     assert(dst->w <= SR__LEVEL_MAX_WIDTH);
-    float sum[SR__LEVEL_MAX_WIDTH * 3];
-    float wsum = 0.0f;
-    for (int k = 0; k < count; k++) {
-        wsum += s[k].weight;
-    }
+    float sum[SR__LEVEL_MAX_WIDTH * 3], part[SR__LEVEL_MAX_WIDTH * 3];
+    float split[SR__SPLIT_MAX * 6];
+    double wsum[SR__LEVEL_MAX_WIDTH], phase_w[SR__LEVEL_MAX_WIDTH];
+    const float a2 = p->a2;
     for (int j = row0; j < row1; j++) {
-        /* Texels of a row differ only by a rotation about +Y, which moves
-         * every sample by the same step in u: find the samples of the
-         * row's first texel and slide them along.  The frame t = up x n,
-         * b = n x t turns with n (no texel centre lies on a pole). */
-        float n[3];
-        sr__equirect_direction(0, j, dst->w, dst->h, n);
-        float tl = 1.0f / sqrtf(n[2] * n[2] + n[0] * n[0]);
-        float t[3] = { n[2] * tl, 0.0f, -n[0] * tl };
-        float b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
-                       n[0] * t[1] - n[1] * t[0] };
+        /* Texels of a row differ only by a rotation about +Y, and the
+         * widths of the level and of the mips are powers of two: a source
+         * texel weighs in texel i of the row what the texel `step` columns
+         * on weighs in texel i + `phases`.  So each source texel's weight
+         * is computed once a phase and added along the whole row. */
         memset(sum, 0, sizeof(float) * 3 * (size_t)dst->w);
-        for (int k = 0; k < count; k++) {
-            const float *l = s[k].l;
-            float d[3];
-            for (int c = 0; c < 3; c++) {
-                d[c] = t[c] * l[0] + b[c] * l[1] + n[c] * l[2];
+        memset(wsum, 0, sizeof(double) * (size_t)dst->w);
+        double theta_n = SR__PI_D * (j + 0.5) / dst->h;
+        double cn = cos(theta_n), sn = sin(theta_n);
+        for (int s = 0; s < p->scales; s++) {
+            const sr__equirect *m = &mip[p->scale[s].mip];
+            float radius = p->scale[s].radius, inner = s > 0 ? p->scale[s - 1].radius : 0.0f;
+            /* beyond 90 degrees N.L is negative: nothing */
+            double reach = fmin(2.0 * radius, 0.5 * SR__PI_D);
+            double cos_reach = cos(reach);
+            int phases = dst->w > m->w ? dst->w / m->w : 1;
+            int step = m->w > dst->w ? m->w / dst->w : 1;
+            int count = dst->w / phases;
+            assert(m->w <= SR__SPLIT_MAX);
+            memset(phase_w, 0, sizeof(double) * (size_t)phases);
+            /* part: texel q * phases + ph of the row at 3 * (ph * count + q) */
+            memset(part, 0, sizeof(float) * 3 * (size_t)dst->w);
+            for (int y = 0; y < m->h; y++) {
+                double theta = SR__PI_D * (y + 0.5) / m->h;
+                if (fabs(theta - theta_n) > reach) {
+                    continue;
+                }
+                double ct = cos(theta), st = sin(theta);
+                /* the columns within `reach` of N: cos(dphi) >= k */
+                double k = (cos_reach - cn * ct) / (sn * st);
+                double dphi = k <= -1.0 ? SR__PI_D : acos(fmin(k, 1.0));
+                int half = (int)(dphi / (2.0 * SR__PI_D) * m->w) + 2;
+                float omega = (float)(2.0 * SR__PI_D / m->w * band_omega(y, y + 1, m->h));
+                int split_done = 0;
+                for (int ph = 0; ph < phases; ph++) {
+                    /* the source column nearest texel ph of the level row */
+                    double centre = (ph + 0.5) / dst->w * m->w - 0.5;
+                    int x0 = (int)floor(centre) - half, x1 = (int)floor(centre) + 1 + half;
+                    if (x1 - x0 + 1 >= m->w) {
+                        x0 = 0;
+                        x1 = m->w - 1;
+                    }
+                    for (int xx = x0; xx <= x1; xx++) {
+                        int x = xx < 0 ? xx + m->w : (xx >= m->w ? xx - m->w : xx);
+                        double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
+                        float c = (float)(cn * ct + sn * st * cos(d));
+                        if (c <= (float)cos_reach || c <= 0.0f) {
+                            continue;
+                        }
+                        float angle = acosf(fminf(c, 1.0f));
+                        float piece = window(angle, radius) - (s > 0 ? window(angle, inner) : 0.0f);
+                        /* GGX D of the half vector; with N = V, (N.H)^2 = (1 + N.L) / 2 */
+                        float q = 0.5f * (1.0f + c) * (a2 - 1.0f) + 1.0f;
+                        float wt = omega * piece * a2 / (SR__PI * q * q) * c;
+                        if (wt <= 0.0f) {
+                            continue;
+                        }
+                        if (!split_done) {
+                            split_row(m->rgb + (size_t)y * m->w * 3, m->w, step, split);
+                            split_done = 1;
+                        }
+                        phase_w[ph] += wt;
+                        /* its share in every texel of the row: one run */
+                        const float *restrict src = split + (size_t)(x % step) * 6 * count +
+                                                    3 * (x / step);
+                        float *restrict o = part + (size_t)ph * 3 * count;
+                        for (int e = 0; e < 3 * count; e++) {
+                            o[e] += wt * src[e];
+                        }
+                    }
+                }
             }
-            float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-            const sr__equirect *m = &mip[s[k].mip];
-            float px, py;
-            sr__equirect_coords(d[0] / len, d[1] / len, d[2] / len, m->w, m->h, &px, &py);
-            /* sr__equirect_bilinear with the row pair fixed */
-            float fy = py - 0.5f, y0f = floorf(fy), ay = fy - y0f;
-            int y0 = (int)y0f, y1 = y0 + 1;
-            y0 = y0 < 0 ? 0 : (y0 >= m->h ? m->h - 1 : y0);
-            y1 = y1 < 0 ? 0 : (y1 >= m->h ? m->h - 1 : y1);
-            const float *r0 = m->rgb + (size_t)y0 * m->w * 3, *r1 = m->rgb + (size_t)y1 * m->w * 3;
-            float w0 = s[k].weight * (1.0f - ay), w1 = s[k].weight * ay;
-            float step = (float)m->w / (float)dst->w;
             for (int i = 0; i < dst->w; i++) {
-                /* px in [0, w) and step i < w: one wrap either way at most */
-                float fx = px + step * (float)i - 0.5f;
-                float x0f = floorf(fx), ax = fx - x0f;
-                int x0 = (int)x0f;
-                x0 = x0 < 0 ? x0 + m->w : (x0 >= m->w ? x0 - m->w : x0);
-                int x1 = x0 + 1 == m->w ? 0 : x0 + 1;
+                int ph = i % phases, q = i / phases;
+                wsum[i] += phase_w[ph];
                 for (int c = 0; c < 3; c++) {
-                    float top = r0[3 * x0 + c] + ax * (r0[3 * x1 + c] - r0[3 * x0 + c]);
-                    float bot = r1[3 * x0 + c] + ax * (r1[3 * x1 + c] - r1[3 * x0 + c]);
-                    sum[3 * i + c] += w0 * top + w1 * bot;
+                    sum[3 * i + c] += part[3 * (ph * count + q) + c];
                 }
             }
         }
         float *o = dst->rgb + (size_t)j * dst->w * 3;
-        for (int i = 0; i < 3 * dst->w; i++) {
-            o[i] = sum[i] / wsum;
+        for (int i = 0; i < dst->w; i++) {
+            float inv = (float)(1.0 / wsum[i]);
+            for (int c = 0; c < 3; c++) {
+                o[3 * i + c] = sum[3 * i + c] * inv;
+            }
         }
     }
 }
