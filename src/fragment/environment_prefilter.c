@@ -8,6 +8,7 @@
  * on the thread count.
  */
 #include "fragment/environment.h"
+#include "simd_types.h"
 
 #include <assert.h>
 #include <string.h>
@@ -228,6 +229,58 @@ static void split_row(const float *restrict row, int w, int step, float *restric
     }
 }
 
+static inline v4f load4(const float *a)
+{
+    v4f v;
+    memcpy(&v, a, sizeof v);
+    return v;
+}
+
+static inline void store4(float *a, v4f v)
+{
+    memcpy(a, &v, sizeof v);
+}
+
+/* o[e] += w[k] * src[k][e] for the runs k = 0, 1, ... in turn: each
+ * element summed in the same order as one run at a time, but held in
+ * registers across the runs rather than loaded and stored for each. */
+static void add_runs(float *restrict o, int n, const float *restrict w,
+                     const float *const *restrict src, int runs)
+{
+    enum { LANES = 4, BLOCK = 8 * LANES };
+    int e = 0;
+    for (; e + BLOCK <= n; e += BLOCK) {
+        v4f a[BLOCK / LANES];
+        for (int b = 0; b < BLOCK / LANES; b++) {
+            a[b] = load4(o + e + LANES * b);
+        }
+        for (int k = 0; k < runs; k++) {
+            v4f wk = (v4f){ 0 } + w[k];
+            const float *s = src[k] + e;
+            for (int b = 0; b < BLOCK / LANES; b++) {
+                a[b] += wk * load4(s + LANES * b);
+            }
+        }
+        for (int b = 0; b < BLOCK / LANES; b++) {
+            store4(o + e + LANES * b, a[b]);
+        }
+    }
+    for (; e + LANES <= n; e += LANES) {
+        v4f a = load4(o + e);
+        for (int k = 0; k < runs; k++) {
+            a += ((v4f){ 0 } + w[k]) * load4(src[k] + e);
+        }
+        store4(o + e, a);
+    }
+    for (; e < n; e++) {
+        float a = o[e];
+        for (int k = 0; k < runs; k++) {
+            a += w[k] * src[k][e];
+        }
+        o[e] = a;
+    }
+}
+
 void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equirect *dst,
                         int row0, int row1)
 {
@@ -235,6 +288,24 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
     float sum[SR__LEVEL_MAX_WIDTH * 3], part[SR__LEVEL_MAX_WIDTH * 3];
     float split[SR__SPLIT_MAX * 6];
     double wsum[SR__LEVEL_MAX_WIDTH], phase_w[SR__LEVEL_MAX_WIDTH];
+    /* a row's runs: their weights and where they start */
+    float run_w[SR__SPLIT_MAX];
+    const float *run_src[SR__SPLIT_MAX];
+    /* cos of the longitude from texel ph of a level row to source column
+     * x, [s][ph * w + x]: the same for every row */
+    static_assert(SR__LEVEL_MAX_WIDTH <= SR__SPLIT_MAX, "a scale's cosines fit its table");
+    double cos_dphi[SR__SPEC_SCALES][SR__SPLIT_MAX];
+    for (int s = 0; s < p->scales; s++) {
+        const sr__equirect *m = &mip[p->scale[s].mip];
+        assert(m->w <= SR__SPLIT_MAX);
+        int phases = dst->w > m->w ? dst->w / m->w : 1;
+        for (int ph = 0; ph < phases; ph++) {
+            for (int x = 0; x < m->w; x++) {
+                double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
+                cos_dphi[s][ph * m->w + x] = cos(d);
+            }
+        }
+    }
     const float a2 = p->a2;
     for (int j = row0; j < row1; j++) {
         /* Texels of a row differ only by a rotation about +Y, and the
@@ -255,7 +326,6 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
             int phases = dst->w > m->w ? dst->w / m->w : 1;
             int step = m->w > dst->w ? m->w / dst->w : 1;
             int count = dst->w / phases;
-            assert(m->w <= SR__SPLIT_MAX);
             memset(phase_w, 0, sizeof(double) * (size_t)phases);
             /* part: texel q * phases + ph of the row at 3 * (ph * count + q) */
             memset(part, 0, sizeof(float) * 3 * (size_t)dst->w);
@@ -279,10 +349,11 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         x0 = 0;
                         x1 = m->w - 1;
                     }
+                    const double *cos_d = cos_dphi[s] + (size_t)ph * m->w;
+                    int runs = 0;
                     for (int xx = x0; xx <= x1; xx++) {
                         int x = xx < 0 ? xx + m->w : (xx >= m->w ? xx - m->w : xx);
-                        double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
-                        float c = (float)(cn * ct + sn * st * cos(d));
+                        float c = (float)(cn * ct + sn * st * cos_d[x]);
                         if (c <= (float)cos_reach || c <= 0.0f) {
                             continue;
                         }
@@ -300,13 +371,10 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         }
                         phase_w[ph] += wt;
                         /* its share in every texel of the row: one run */
-                        const float *restrict src = split + (size_t)(x % step) * 6 * count +
-                                                    3 * (x / step);
-                        float *restrict o = part + (size_t)ph * 3 * count;
-                        for (int e = 0; e < 3 * count; e++) {
-                            o[e] += wt * src[e];
-                        }
+                        run_w[runs] = wt;
+                        run_src[runs++] = split + (size_t)(x % step) * 6 * count + 3 * (x / step);
                     }
+                    add_runs(part + (size_t)ph * 3 * count, 3 * count, run_w, run_src, runs);
                 }
             }
             for (int i = 0; i < dst->w; i++) {
