@@ -166,6 +166,7 @@ void sr__specular_plan(float roughness, const sr__equirect *mip, int mips, sr__s
 {
     float alpha = roughness * roughness;
     p->a2 = alpha * alpha;
+    p->simd = SR_SIMD_BASE;
     /* The lobe's core (half its peak within about 1.3 alpha of R) on the
      * coarsest mip that resolves it, but never coarser than 128 x 64;
      * then wider and wider rings of the long GGX tail, each on a mip four
@@ -212,6 +213,38 @@ static float window(float theta, float radius)
     return x >= 1.0f ? 0.0f : 1.0f - x * x * (3.0f - 2.0f * x);
 }
 
+/* A scale's window() as a function of the cosine of the angle: beyond
+ * the cosines of 0.999 radius and of 2.002 radius it is 1 or 0 whatever
+ * acosf's rounding (below 1e-6 of the angle), so the arc cosine is
+ * needed only between them, for the same floats. */
+typedef struct {
+    float radius;
+    double one, zero;   /* c above `one`: 1; below `zero`: 0 */
+} cos_window;
+
+static cos_window make_cos_window(float radius)
+{
+    cos_window w = { radius, -2.0, -2.0 };
+    if (isfinite(radius)) {
+        w.one = cos(0.999 * radius);
+        if (2.002 * radius < SR__PI_D) {
+            w.zero = cos(2.002 * radius);
+        }
+    }
+    return w;
+}
+
+static float window_cos(float c, const cos_window *w)
+{
+    if (c > w->one) {
+        return 1.0f;
+    }
+    if (c < w->zero) {
+        return 0.0f;
+    }
+    return window(acosf(fminf(c, 1.0f)), w->radius);
+}
+
 /* Source row `row` (w texels) as `step` rows of its columns r, r + step,
  * ..., each twice over (2 * count texels, count = w / step), so that the
  * texels from column x on are one run: rows[x % step] + 3 * (x / step). */
@@ -229,56 +262,35 @@ static void split_row(const float *restrict row, int w, int step, float *restric
     }
 }
 
-static inline v4f load4(const float *a)
-{
-    v4f v;
-    memcpy(&v, a, sizeof v);
-    return v;
-}
+#define PF_RUNS_FN     add_runs
+#define PF_RUNS_TARGET
+#define PF_RUNS_V      v4f
+#include "fragment/prefilter_runs.h"
+#undef PF_RUNS_FN
+#undef PF_RUNS_TARGET
+#undef PF_RUNS_V
 
-static inline void store4(float *a, v4f v)
-{
-    memcpy(a, &v, sizeof v);
-}
+#if defined(__x86_64__) || defined(__i386__)
+#define PF_RUNS_FN     add_runs_avx2
+#define PF_RUNS_TARGET __attribute__((target("avx2")))
+#define PF_RUNS_V      v8f
+#include "fragment/prefilter_runs.h"
+#undef PF_RUNS_FN
+#undef PF_RUNS_TARGET
+#undef PF_RUNS_V
+#endif
 
-/* o[e] += w[k] * src[k][e] for the runs k = 0, 1, ... in turn: each
- * element summed in the same order as one run at a time, but held in
- * registers across the runs rather than loaded and stored for each. */
-static void add_runs(float *restrict o, int n, const float *restrict w,
-                     const float *const *restrict src, int runs)
+static void add_runs_at(sr_simd_level simd, float *restrict o, int n, const float *restrict w,
+                        const float *const *restrict src, int runs)
 {
-    enum { LANES = 4, BLOCK = 8 * LANES };
-    int e = 0;
-    for (; e + BLOCK <= n; e += BLOCK) {
-        v4f a[BLOCK / LANES];
-        for (int b = 0; b < BLOCK / LANES; b++) {
-            a[b] = load4(o + e + LANES * b);
-        }
-        for (int k = 0; k < runs; k++) {
-            v4f wk = (v4f){ 0 } + w[k];
-            const float *s = src[k] + e;
-            for (int b = 0; b < BLOCK / LANES; b++) {
-                a[b] += wk * load4(s + LANES * b);
-            }
-        }
-        for (int b = 0; b < BLOCK / LANES; b++) {
-            store4(o + e + LANES * b, a[b]);
-        }
+#if defined(__x86_64__) || defined(__i386__)
+    if (simd >= SR_SIMD_AVX2) {
+        add_runs_avx2(o, n, w, src, runs);
+        return;
     }
-    for (; e + LANES <= n; e += LANES) {
-        v4f a = load4(o + e);
-        for (int k = 0; k < runs; k++) {
-            a += ((v4f){ 0 } + w[k]) * load4(src[k] + e);
-        }
-        store4(o + e, a);
-    }
-    for (; e < n; e++) {
-        float a = o[e];
-        for (int k = 0; k < runs; k++) {
-            a += w[k] * src[k][e];
-        }
-        o[e] = a;
-    }
+#endif
+    (void)simd;
+    add_runs(o, n, w, src, runs);
 }
 
 void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equirect *dst,
@@ -319,7 +331,9 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
         double cn = cos(theta_n), sn = sin(theta_n);
         for (int s = 0; s < p->scales; s++) {
             const sr__equirect *m = &mip[p->scale[s].mip];
-            float radius = p->scale[s].radius, inner = s > 0 ? p->scale[s - 1].radius : 0.0f;
+            float radius = p->scale[s].radius;
+            cos_window outer_w = make_cos_window(radius),
+                       inner_w = make_cos_window(s > 0 ? p->scale[s - 1].radius : 0.0f);
             /* beyond 90 degrees N.L is negative: nothing */
             double reach = fmin(2.0 * radius, 0.5 * SR__PI_D);
             double cos_reach = cos(reach);
@@ -357,8 +371,8 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         if (c <= (float)cos_reach || c <= 0.0f) {
                             continue;
                         }
-                        float angle = acosf(fminf(c, 1.0f));
-                        float piece = window(angle, radius) - (s > 0 ? window(angle, inner) : 0.0f);
+                        float piece = window_cos(c, &outer_w) -
+                                      (s > 0 ? window_cos(c, &inner_w) : 0.0f);
                         /* GGX D of the half vector; with N = V, (N.H)^2 = (1 + N.L) / 2 */
                         float q = 0.5f * (1.0f + c) * (a2 - 1.0f) + 1.0f;
                         float wt = omega * piece * a2 / (SR__PI * q * q) * c;
@@ -374,7 +388,8 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         run_w[runs] = wt;
                         run_src[runs++] = split + (size_t)(x % step) * 6 * count + 3 * (x / step);
                     }
-                    add_runs(part + (size_t)ph * 3 * count, 3 * count, run_w, run_src, runs);
+                    add_runs_at(p->simd, part + (size_t)ph * 3 * count, 3 * count, run_w, run_src,
+                                runs);
                 }
             }
             for (int i = 0; i < dst->w; i++) {
