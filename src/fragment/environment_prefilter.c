@@ -251,14 +251,17 @@ static float window_cos(float c, const cos_window *w)
 static void split_row(const float *restrict row, int w, int step, float *restrict rows)
 {
     int count = w / step;
+    size_t half = (size_t)3 * count;
     for (int r = 0; r < step; r++) {
-        float *o = rows + (size_t)r * 6 * count;
-        for (int q = 0; q < 2 * count; q++) {
-            const float *t = row + 3 * (r + step * (q < count ? q : q - count));
-            o[3 * q] = t[0];
-            o[3 * q + 1] = t[1];
-            o[3 * q + 2] = t[2];
+        float *o = rows + (size_t)r * 2 * half;
+        if (step == 1) {
+            memcpy(o, row, sizeof(float) * half);
+        } else {
+            for (int q = 0; q < count; q++) {
+                memcpy(o + 3 * q, row + 3 * (r + step * q), sizeof(float) * 3);
+            }
         }
+        memcpy(o + half, o, sizeof(float) * half);
     }
 }
 
@@ -307,10 +310,16 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
      * x, [s][ph * w + x]: the same for every row */
     static_assert(SR__LEVEL_MAX_WIDTH <= SR__SPLIT_MAX, "a scale's cosines fit its table");
     double cos_dphi[SR__SPEC_SCALES][SR__SPLIT_MAX];
+    /* where in split_row's rows the run of source column x starts */
+    int run_at[SR__SPEC_SCALES][SR__SPLIT_MAX];
     for (int s = 0; s < p->scales; s++) {
         const sr__equirect *m = &mip[p->scale[s].mip];
         assert(m->w <= SR__SPLIT_MAX);
         int phases = dst->w > m->w ? dst->w / m->w : 1;
+        int step = m->w > dst->w ? m->w / dst->w : 1, count = dst->w / phases;
+        for (int x = 0; x < m->w; x++) {
+            run_at[s][x] = (x % step) * 6 * count + 3 * (x / step);
+        }
         for (int ph = 0; ph < phases; ph++) {
             for (int x = 0; x < m->w; x++) {
                 double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
@@ -386,7 +395,7 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         phase_w[ph] += wt;
                         /* its share in every texel of the row: one run */
                         run_w[runs] = wt;
-                        run_src[runs++] = split + (size_t)(x % step) * 6 * count + 3 * (x / step);
+                        run_src[runs++] = split + run_at[s][x];
                     }
                     add_runs_at(p->simd, part + (size_t)ph * 3 * count, 3 * count, run_w, run_src,
                                 runs);
