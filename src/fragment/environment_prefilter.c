@@ -108,27 +108,47 @@ static double band_omega(double t0, double t1, int h)
     return cos(SR__PI_D * t0 / h) - cos(SR__PI_D * t1 / h);
 }
 
+/* min and max as comparisons, for coordinates (never NaN): fmin and
+ * fmax are library calls. */
+static inline double min_d(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double max_d(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 void sr__equirect_resample(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
 {
+    /* A row's sums side by side, source row by source row, so that each
+     * row's solid angle is computed once a level row rather than once a
+     * texel; each texel still sums its source texels row by row. */
+    assert(dst->w <= 2 * SR__SPLIT_MAX);
+    double acc[2 * SR__SPLIT_MAX][4];
     double sx = (double)src->w / dst->w, sy = (double)src->h / dst->h;
     for (int j = row0; j < row1; j++) {
         double t0 = j * sy, t1 = (j + 1) * sy;
-        float *o = dst->rgb + (size_t)j * dst->w * 3;
-        for (int i = 0; i < dst->w; i++) {
-            double u0 = i * sx, u1 = (i + 1) * sx, acc[3] = { 0, 0, 0 }, wsum = 0;
-            for (int y = (int)t0; y < src->h && y < t1; y++) {
-                double wy = band_omega(fmax(t0, y), fmin(t1, y + 1), src->h);
-                const float *r = src->rgb + (size_t)y * src->w * 3;
+        memset(acc, 0, sizeof(acc[0]) * (size_t)dst->w);
+        for (int y = (int)t0; y < src->h && y < t1; y++) {
+            double wy = band_omega(max_d(t0, y), min_d(t1, y + 1), src->h);
+            const float *r = src->rgb + (size_t)y * src->w * 3;
+            for (int i = 0; i < dst->w; i++) {
+                double u0 = i * sx, u1 = (i + 1) * sx, *a = acc[i];
                 for (int x = (int)u0; x < src->w && x < u1; x++) {
-                    double wt = wy * (fmin(u1, x + 1) - fmax(u0, x));
+                    double wt = wy * (min_d(u1, x + 1) - max_d(u0, x));
                     for (int c = 0; c < 3; c++) {
-                        acc[c] += wt * r[3 * x + c];
+                        a[c] += wt * r[3 * x + c];
                     }
-                    wsum += wt;
+                    a[3] += wt;
                 }
             }
+        }
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < dst->w; i++) {
             for (int c = 0; c < 3; c++) {
-                o[3 * i + c] = (float)(acc[c] / wsum);
+                o[3 * i + c] = (float)(acc[i][c] / acc[i][3]);
             }
         }
     }
