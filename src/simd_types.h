@@ -11,6 +11,7 @@
 typedef double v4d __attribute__((vector_size(32)));   /* exact edge values, depth */
 typedef int64_t v4l __attribute__((vector_size(32)));  /* masks of v4d lanes */
 typedef float v4f __attribute__((vector_size(16)));
+typedef float v8f __attribute__((vector_size(32)));    /* AVX2 lanes of float sums */
 typedef int32_t v4i __attribute__((vector_size(16)));  /* masks of v4f lanes, packed pixels */
 typedef float v16f __attribute__((vector_size(64)));
 typedef int32_t v16i __attribute__((vector_size(64)));

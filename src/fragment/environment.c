@@ -179,6 +179,7 @@ static sr_result prefilter(sr_context *ctx, prefilter_work *w)
         }
         jobs += (lw / 2 + BAND_ROWS - 1) / BAND_ROWS;
         sr__specular_plan((float)k / (SR_ENVIRONMENT_LEVELS - 1), mip, mips, &w->plans[k]);
+        w->plans[k].simd = sr_context_simd(ctx);
     }
     w->jobs = sr__alloc(ctx, (size_t)jobs * sizeof *w->jobs);
     if (!w->jobs) {

@@ -225,6 +225,9 @@ void sr__equirect_halve(const sr__equirect *src, sr__equirect *dst, int row0, in
 #define SR__SPLIT_MAX        512
 typedef struct sr__spec_plan {
     float a2;                   /* alpha^2 */
+    /* the instruction set of its sums: SR_SIMD_BASE from sr__specular_plan,
+     * the context's by sr_make_environment; the same floats at any */
+    sr_simd_level simd;
     int scales;
     struct {
         int mip;

@@ -8,6 +8,7 @@
  * on the thread count.
  */
 #include "fragment/environment.h"
+#include "simd_types.h"
 
 #include <assert.h>
 #include <string.h>
@@ -107,27 +108,47 @@ static double band_omega(double t0, double t1, int h)
     return cos(SR__PI_D * t0 / h) - cos(SR__PI_D * t1 / h);
 }
 
+/* min and max as comparisons, for coordinates (never NaN): fmin and
+ * fmax are library calls. */
+static inline double min_d(double a, double b)
+{
+    return a < b ? a : b;
+}
+
+static inline double max_d(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 void sr__equirect_resample(const sr__equirect *src, sr__equirect *dst, int row0, int row1)
 {
+    /* A row's sums side by side, source row by source row, so that each
+     * row's solid angle is computed once a level row rather than once a
+     * texel; each texel still sums its source texels row by row. */
+    assert(dst->w <= 2 * SR__SPLIT_MAX);
+    double acc[2 * SR__SPLIT_MAX][4];
     double sx = (double)src->w / dst->w, sy = (double)src->h / dst->h;
     for (int j = row0; j < row1; j++) {
         double t0 = j * sy, t1 = (j + 1) * sy;
-        float *o = dst->rgb + (size_t)j * dst->w * 3;
-        for (int i = 0; i < dst->w; i++) {
-            double u0 = i * sx, u1 = (i + 1) * sx, acc[3] = { 0, 0, 0 }, wsum = 0;
-            for (int y = (int)t0; y < src->h && y < t1; y++) {
-                double wy = band_omega(fmax(t0, y), fmin(t1, y + 1), src->h);
-                const float *r = src->rgb + (size_t)y * src->w * 3;
+        memset(acc, 0, sizeof(acc[0]) * (size_t)dst->w);
+        for (int y = (int)t0; y < src->h && y < t1; y++) {
+            double wy = band_omega(max_d(t0, y), min_d(t1, y + 1), src->h);
+            const float *r = src->rgb + (size_t)y * src->w * 3;
+            for (int i = 0; i < dst->w; i++) {
+                double u0 = i * sx, u1 = (i + 1) * sx, *a = acc[i];
                 for (int x = (int)u0; x < src->w && x < u1; x++) {
-                    double wt = wy * (fmin(u1, x + 1) - fmax(u0, x));
+                    double wt = wy * (min_d(u1, x + 1) - max_d(u0, x));
                     for (int c = 0; c < 3; c++) {
-                        acc[c] += wt * r[3 * x + c];
+                        a[c] += wt * r[3 * x + c];
                     }
-                    wsum += wt;
+                    a[3] += wt;
                 }
             }
+        }
+        float *o = dst->rgb + (size_t)j * dst->w * 3;
+        for (int i = 0; i < dst->w; i++) {
             for (int c = 0; c < 3; c++) {
-                o[3 * i + c] = (float)(acc[c] / wsum);
+                o[3 * i + c] = (float)(acc[i][c] / acc[i][3]);
             }
         }
     }
@@ -165,6 +186,7 @@ void sr__specular_plan(float roughness, const sr__equirect *mip, int mips, sr__s
 {
     float alpha = roughness * roughness;
     p->a2 = alpha * alpha;
+    p->simd = SR_SIMD_BASE;
     /* The lobe's core (half its peak within about 1.3 alpha of R) on the
      * coarsest mip that resolves it, but never coarser than 128 x 64;
      * then wider and wider rings of the long GGX tail, each on a mip four
@@ -211,21 +233,87 @@ static float window(float theta, float radius)
     return x >= 1.0f ? 0.0f : 1.0f - x * x * (3.0f - 2.0f * x);
 }
 
+/* A scale's window() as a function of the cosine of the angle: beyond
+ * the cosines of 0.999 radius and of 2.002 radius it is 1 or 0 whatever
+ * acosf's rounding (below 1e-6 of the angle), so the arc cosine is
+ * needed only between them, for the same floats. */
+typedef struct {
+    float radius;
+    double one, zero;   /* c above `one`: 1; below `zero`: 0 */
+} cos_window;
+
+static cos_window make_cos_window(float radius)
+{
+    cos_window w = { radius, -2.0, -2.0 };
+    if (isfinite(radius)) {
+        w.one = cos(0.999 * radius);
+        if (2.002 * radius < SR__PI_D) {
+            w.zero = cos(2.002 * radius);
+        }
+    }
+    return w;
+}
+
+static float window_cos(float c, const cos_window *w)
+{
+    if (c > w->one) {
+        return 1.0f;
+    }
+    if (c < w->zero) {
+        return 0.0f;
+    }
+    return window(acosf(fminf(c, 1.0f)), w->radius);
+}
+
 /* Source row `row` (w texels) as `step` rows of its columns r, r + step,
  * ..., each twice over (2 * count texels, count = w / step), so that the
  * texels from column x on are one run: rows[x % step] + 3 * (x / step). */
 static void split_row(const float *restrict row, int w, int step, float *restrict rows)
 {
     int count = w / step;
+    size_t half = (size_t)3 * count;
     for (int r = 0; r < step; r++) {
-        float *o = rows + (size_t)r * 6 * count;
-        for (int q = 0; q < 2 * count; q++) {
-            const float *t = row + 3 * (r + step * (q < count ? q : q - count));
-            o[3 * q] = t[0];
-            o[3 * q + 1] = t[1];
-            o[3 * q + 2] = t[2];
+        float *o = rows + (size_t)r * 2 * half;
+        if (step == 1) {
+            memcpy(o, row, sizeof(float) * half);
+        } else {
+            for (int q = 0; q < count; q++) {
+                memcpy(o + 3 * q, row + 3 * (r + step * q), sizeof(float) * 3);
+            }
         }
+        memcpy(o + half, o, sizeof(float) * half);
     }
+}
+
+#define PF_RUNS_FN     add_runs
+#define PF_RUNS_TARGET
+#define PF_RUNS_V      v4f
+#include "fragment/prefilter_runs.h"
+#undef PF_RUNS_FN
+#undef PF_RUNS_TARGET
+#undef PF_RUNS_V
+
+#if defined(__x86_64__) || defined(__i386__)
+#define PF_RUNS_FN     add_runs_avx2
+#define PF_RUNS_TARGET __attribute__((target("avx2")))
+#define PF_RUNS_V      v8f
+#include "fragment/prefilter_runs.h"
+#undef PF_RUNS_FN
+#undef PF_RUNS_TARGET
+#undef PF_RUNS_V
+#endif
+
+static void add_runs_at(sr_simd_level simd, float *restrict o, int n, const float *restrict w,
+                        const float *const *restrict src, int runs)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    if (simd >= SR_SIMD_AVX2) {
+        add_runs_avx2(o, n, w, src, runs);
+        return;
+    }
+#endif
+    (void)simd;
+    add_runs(o, n, w, src, runs);
 }
 
 void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equirect *dst,
@@ -235,6 +323,30 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
     float sum[SR__LEVEL_MAX_WIDTH * 3], part[SR__LEVEL_MAX_WIDTH * 3];
     float split[SR__SPLIT_MAX * 6];
     double wsum[SR__LEVEL_MAX_WIDTH], phase_w[SR__LEVEL_MAX_WIDTH];
+    /* a row's runs: their weights and where they start */
+    float run_w[SR__SPLIT_MAX];
+    const float *run_src[SR__SPLIT_MAX];
+    /* cos of the longitude from texel ph of a level row to source column
+     * x, [s][ph * w + x]: the same for every row */
+    static_assert(SR__LEVEL_MAX_WIDTH <= SR__SPLIT_MAX, "a scale's cosines fit its table");
+    double cos_dphi[SR__SPEC_SCALES][SR__SPLIT_MAX];
+    /* where in split_row's rows the run of source column x starts */
+    int run_at[SR__SPEC_SCALES][SR__SPLIT_MAX];
+    for (int s = 0; s < p->scales; s++) {
+        const sr__equirect *m = &mip[p->scale[s].mip];
+        assert(m->w <= SR__SPLIT_MAX);
+        int phases = dst->w > m->w ? dst->w / m->w : 1;
+        int step = m->w > dst->w ? m->w / dst->w : 1, count = dst->w / phases;
+        for (int x = 0; x < m->w; x++) {
+            run_at[s][x] = (x % step) * 6 * count + 3 * (x / step);
+        }
+        for (int ph = 0; ph < phases; ph++) {
+            for (int x = 0; x < m->w; x++) {
+                double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
+                cos_dphi[s][ph * m->w + x] = cos(d);
+            }
+        }
+    }
     const float a2 = p->a2;
     for (int j = row0; j < row1; j++) {
         /* Texels of a row differ only by a rotation about +Y, and the
@@ -248,14 +360,15 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
         double cn = cos(theta_n), sn = sin(theta_n);
         for (int s = 0; s < p->scales; s++) {
             const sr__equirect *m = &mip[p->scale[s].mip];
-            float radius = p->scale[s].radius, inner = s > 0 ? p->scale[s - 1].radius : 0.0f;
+            float radius = p->scale[s].radius;
+            cos_window outer_w = make_cos_window(radius),
+                       inner_w = make_cos_window(s > 0 ? p->scale[s - 1].radius : 0.0f);
             /* beyond 90 degrees N.L is negative: nothing */
             double reach = fmin(2.0 * radius, 0.5 * SR__PI_D);
             double cos_reach = cos(reach);
             int phases = dst->w > m->w ? dst->w / m->w : 1;
             int step = m->w > dst->w ? m->w / dst->w : 1;
             int count = dst->w / phases;
-            assert(m->w <= SR__SPLIT_MAX);
             memset(phase_w, 0, sizeof(double) * (size_t)phases);
             /* part: texel q * phases + ph of the row at 3 * (ph * count + q) */
             memset(part, 0, sizeof(float) * 3 * (size_t)dst->w);
@@ -279,15 +392,16 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         x0 = 0;
                         x1 = m->w - 1;
                     }
+                    const double *cos_d = cos_dphi[s] + (size_t)ph * m->w;
+                    int runs = 0;
                     for (int xx = x0; xx <= x1; xx++) {
                         int x = xx < 0 ? xx + m->w : (xx >= m->w ? xx - m->w : xx);
-                        double d = 2.0 * SR__PI_D * ((x + 0.5) / m->w - (ph + 0.5) / dst->w);
-                        float c = (float)(cn * ct + sn * st * cos(d));
+                        float c = (float)(cn * ct + sn * st * cos_d[x]);
                         if (c <= (float)cos_reach || c <= 0.0f) {
                             continue;
                         }
-                        float angle = acosf(fminf(c, 1.0f));
-                        float piece = window(angle, radius) - (s > 0 ? window(angle, inner) : 0.0f);
+                        float piece = window_cos(c, &outer_w) -
+                                      (s > 0 ? window_cos(c, &inner_w) : 0.0f);
                         /* GGX D of the half vector; with N = V, (N.H)^2 = (1 + N.L) / 2 */
                         float q = 0.5f * (1.0f + c) * (a2 - 1.0f) + 1.0f;
                         float wt = omega * piece * a2 / (SR__PI * q * q) * c;
@@ -300,13 +414,11 @@ void sr__prefilter_rows(const sr__equirect *mip, const sr__spec_plan *p, sr__equ
                         }
                         phase_w[ph] += wt;
                         /* its share in every texel of the row: one run */
-                        const float *restrict src = split + (size_t)(x % step) * 6 * count +
-                                                    3 * (x / step);
-                        float *restrict o = part + (size_t)ph * 3 * count;
-                        for (int e = 0; e < 3 * count; e++) {
-                            o[e] += wt * src[e];
-                        }
+                        run_w[runs] = wt;
+                        run_src[runs++] = split + run_at[s][x];
                     }
+                    add_runs_at(p->simd, part + (size_t)ph * 3 * count, 3 * count, run_w, run_src,
+                                runs);
                 }
             }
             for (int i = 0; i < dst->w; i++) {
