@@ -43,12 +43,14 @@ from ._scene import Animation, Instance, Scene, load, load_mesh
 from ._framing import fit_camera, orbit
 from ._render import OUTPUTS, render
 from ._svg import SvgWarning, render_svg
+from ._warning import SoftrastWarning
 from ._draw import Canvas, LinearGradient, Pattern, RadialGradient
 
 __version__ = library_version
 __all__ = ["Camera", "Light", "Mesh", "Instance", "Material", "Scene", "load", "load_mesh",
            "Animation", "look_at",
            "fit_camera", "orbit",
-           "features", "read_image", "render", "render_svg", "SvgWarning", "write_png", "OUTPUTS",
+           "features", "read_image", "render", "render_svg", "SoftrastWarning", "SvgWarning",
+           "write_png", "OUTPUTS",
            "__version__",
            "Canvas", "Path", "PathView", "LinearGradient", "RadialGradient", "Pattern"]

@@ -14,8 +14,7 @@ import json
 import os
 import struct
 import urllib.parse
-import warnings
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 from numpy.typing import NDArray
@@ -90,25 +89,25 @@ class _Document:
 
 
 def base_color_images(path: Union[str, bytes],
-                      materials: Sequence[Dict[str, Any]]
+                      materials: Sequence[Dict[str, Any]], lost: List[str]
                       ) -> Dict[int, Optional[NDArray[np.uint8]]]:
     """{material index: (H, W, 4) uint8 image} for the materials of
     `materials` (sr_load_scene's factors) that have a base color texture;
-    an image that cannot be read is left out with a warning."""
+    an image that cannot be read is left out, with a line in `lost` for
+    the caller's warning."""
     wanted = [i for i, m in enumerate(materials) if m["base_color_texture"] is not None]
     if not wanted:
         return {}
     try:
         doc = _Document(path)
     except (OSError, ValueError) as e:
-        warnings.warn(f"softrast.load: {os.fsdecode(path)}: base color textures not kept: {e}",
-                      stacklevel=3)
+        lost.append(f"softrast.load: {os.fsdecode(path)}: base color textures not kept: {e}")
         return {}
     images: Dict[int, Optional[NDArray[np.uint8]]] = {}
     for i in wanted:
         try:
             images[i] = doc.base_color_image(i)
         except (OSError, ValueError, KeyError, IndexError, TypeError) as e:
-            warnings.warn(f"softrast.load: {os.fsdecode(path)}: /materials/{i}: base color "
-                          f"texture not kept: {e}", stacklevel=3)
+            lost.append(f"softrast.load: {os.fsdecode(path)}: /materials/{i}: base color "
+                        f"texture not kept: {e}")
     return images

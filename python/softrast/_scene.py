@@ -18,6 +18,7 @@ from ._gltf import base_color_images
 from ._light import Light
 from ._material import Material, material_arrays
 from ._softrast import Mesh
+from ._warning import warn_lines
 
 if TYPE_CHECKING:
     from .typing import PathLike, RealArrayLike, SceneItem
@@ -283,11 +284,21 @@ def load_mesh(path: PathLike) -> Mesh:
     was built with it, FBX, Collada, 3DS, OFF and more.  Faces with more than three vertices are
     triangulated.  The mesh's one diffuse texture, if any, becomes
     ``Mesh.texture``; a mesh whose parts take different textures keeps none
-    (with a warning).  Raises OSError when the file cannot be read
+    (with a warning).  What the reader skips is a :class:`SoftrastWarning`
+    each, as :func:`load` gives them.  Raises OSError when the file cannot be read
     (FileNotFoundError when it does not exist) and
     ValueError when it is malformed.
     """
-    return Mesh(**_softrast.load_mesh(_path(path)))
+    mesh, lines = _read_mesh(_path(path))
+    warn_lines(lines, 2)
+    return mesh
+
+
+def _read_mesh(path: Union[str, bytes]) -> Tuple[Mesh, List[str]]:
+    """load_mesh's Mesh and its warnings, not yet given."""
+    d = _softrast.load_mesh(path)
+    lines = d.pop("warnings")
+    return Mesh(**d), lines
 
 
 def _animation_in(names: List[str], animation: Union[int, str], path: Union[str, bytes]) -> int:
@@ -346,9 +357,21 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     KHR_xmp_json_ld packet the asset references (its ``dc:creator``,
     ``dc:rights``, ``xmpRights:UsageTerms``...) as the file gives it, with
     ``xmp_properties`` those as text; a reference to no packet leaves
-    ``xmp`` None (``softrast info`` prints the reader's warning).
+    ``xmp`` None, with the reader's warning.
+
+    What the reader skips (a texture it cannot read, an extension it does
+    not, a bad reference) is a :class:`SoftrastWarning` each, with the
+    text ``softrast`` prints, given at the line that called load.
     """
-    path = _path(path)
+    scene, lines = _read(_path(path), variant, animation, time)
+    warn_lines(lines, 2)
+    return scene
+
+
+def _read(path: Union[str, bytes], variant: Union[str, int, None],
+          animation: Union[int, str, None], time: float) -> Tuple[Scene, List[str]]:
+    """load's Scene and its warnings (the reader's lines, then the base
+    color images left out), not yet given."""
     if variant is not None and (isinstance(variant, bool)
                                 or not isinstance(variant, (str, int))):
         raise TypeError(f"variant: expected a str, an int or None, got {type(variant).__name__}")
@@ -360,20 +383,24 @@ def load(path: PathLike, variant: Union[str, int, None] = None,
     if isinstance(animation, str):
         # A name is found among the file's animations: the file is read
         # once, at rest, and posed by it (sr_scene_pose), not read twice.
-        rest = load(path, variant)
+        rest, lines = _read(path, variant, None, 0.0)
         if rest._reading is None:
             _animation_in([], animation, path)
-        return rest.pose(animation, time)
+        return rest.pose(animation, time), lines
     index = -1 if animation is None else _animation_in([], animation, path)
     d = _softrast.load_scene(path, variant, index, time)
     if not d["gltf"]:
-        return Scene([load_mesh(path)])
-    images = base_color_images(path, d["materials"])
+        # Read again as load_mesh reads it, whose lines are the reader's
+        # (the same again) and its texture's.
+        mesh, lines = _read_mesh(path)
+        return Scene([mesh]), lines
+    lines = d["warnings"]
+    images = base_color_images(path, d["materials"], lines)
     # The file's /materials, then glTF's default material, which primitives
     # without one draw with (not listed in Scene.materials: no index of
     # the file's).
     materials = [Material._from_factors(m, images.get(i)) for i, m in enumerate(d["materials"])]
-    return _gltf_scene(path, variant, index, time, d, materials, images)
+    return _gltf_scene(path, variant, index, time, d, materials, images), lines
 
 
 def _metadata(m: dict[str, Any]) -> dict[str, Any]:

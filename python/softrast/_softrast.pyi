@@ -102,7 +102,9 @@ def render_svg(path: Optional[PathLike], data: Optional[Union[bytes, bytearray, 
 def parse_color(text: str, /) -> Tuple[float, float, float, float]: ...
 
 # The package's own entry points into the library (softrast.render,
-# load, load_mesh, fit_camera wrap them).
+# load, load_mesh, fit_camera wrap them).  load_mesh's and load_scene's
+# dicts hold the reader's warnings, "warnings" (list[str]), for the Python
+# layer to give as SoftrastWarning.
 def load_mesh(path: PathLike, /) -> dict[str, Any]: ...
 def load_scene(path: PathLike, variant: Union[str, int, None] = None, animation: int = -1,
                time: float = 0.0, /) -> dict[str, Any]: ...

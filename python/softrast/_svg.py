@@ -7,7 +7,6 @@ import errno
 import math
 import operator
 import os
-import warnings
 from typing import TYPE_CHECKING, Optional, SupportsFloat, Tuple, Union
 
 import numpy as np
@@ -16,18 +15,18 @@ from numpy.typing import NDArray
 from . import _softrast
 from ._color import Color, to_rgba
 from ._memory import check_memory
+from ._warning import SoftrastWarning, warn_lines
 
 if TYPE_CHECKING:
     from .typing import SvgSource
 
 
-class SvgWarning(UserWarning):
+class SvgWarning(SoftrastWarning):
     """What the SVG reader skipped: an unsupported element, property or
     image source, given once per name and render as
     ``"NAME:LINE: warning: unsupported element 'foreignObject' skipped"``."""
 
     def __init__(self, message: str) -> None:
-        # (A signature of its own: inspect finds none on Warning's.)
         super().__init__(message)
 
 
@@ -195,8 +194,7 @@ def render_svg(source: SvgSource, *, width: Optional[int] = None, height: Option
         name = _document_name(resources_dir)
     image, lines, error = _softrast.render_svg(path, data, name, w, h, s,
                                                _background(background))
-    for line in lines:
-        warnings.warn(line, SvgWarning, stacklevel=2)
+    warn_lines(lines, 2, SvgWarning)
     if error is not None:
         raise error
     assert image is not None

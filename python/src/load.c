@@ -53,32 +53,30 @@ static PyObject *arrays_dict(size_t vertices, const float *positions, const floa
 }
 
 /* The mesh's one texture as an (H, W, 4) uint8 array, None when it names
- * none, or a warning and None when it cannot be read. */
-static PyObject *mesh_texture(const sr_mesh *m)
+ * none, or a warning kept in w and None when it cannot be read. */
+static PyObject *mesh_texture(const sr_mesh *m, sr_py_warnings *w)
 {
     if ((!m->texture_path && !m->texture_data) || m->part_count > 1) {
-        if (m->part_count > 1 &&
-            PyErr_WarnEx(PyExc_UserWarning,
-                         "softrast.load_mesh: the mesh takes several textures; none is kept", 1) < 0) {
-            return NULL;
+        if (m->part_count > 1) {
+            sr_py_keep_warning(w, "softrast.load_mesh: the mesh takes several textures; "
+                                  "none is kept");
         }
         Py_RETURN_NONE;
     }
-    int w, h;
+    int width, height;
     uint8_t *px = NULL;
     sr_io_error err = { { 0 } };
     sr_result r = m->texture_data
-                      ? sr_decode_image("<embedded texture>", m->texture_data, m->texture_size, &w,
-                                        &h, &px, &err)
-                      : sr_read_image(m->texture_path, &w, &h, &px, &err);
+                      ? sr_decode_image("<embedded texture>", m->texture_data, m->texture_size,
+                                        &width, &height, &px, &err)
+                      : sr_read_image(m->texture_path, &width, &height, &px, &err);
     if (r != SR_OK) {
-        if (PyErr_WarnFormat(PyExc_UserWarning, 1, "softrast.load_mesh: texture not kept: %s",
-                             err.message) < 0) {
-            return NULL;
-        }
+        char line[sizeof err.message + 48];
+        snprintf(line, sizeof line, "softrast.load_mesh: texture not kept: %s", err.message);
+        sr_py_keep_warning(w, line);
         Py_RETURN_NONE;
     }
-    return sr_py_image_array(px, w, h);
+    return sr_py_image_array(px, width, height);
 }
 
 PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
@@ -91,11 +89,13 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     sr_context *ctx = NULL;
     sr_mesh mesh = { 0 };
     sr_io_error err = { { 0 } };
+    sr_py_warnings warnings = { 0 };
+    sr_load_desc desc = { .warn = sr_py_keep_warning, .user = &warnings };
     sr_result r = sr_make_context(&(sr_context_desc){ .threads = 1 }, &ctx);
     if (r == SR_OK) {
         const char *path = PyBytes_AS_STRING(path_obj);
         Py_BEGIN_ALLOW_THREADS
-        r = sr_load_mesh(ctx, path, NULL, &mesh, &err);
+        r = sr_load_mesh(ctx, path, &desc, &mesh, &err);
         Py_END_ALLOW_THREADS
     } else {
         snprintf(err.message, sizeof err.message, "cannot make a context");
@@ -106,10 +106,12 @@ PyObject *sr_py_load_mesh(PyObject *self, PyObject *args)
     } else {
         d = arrays_dict(mesh.vertex_count, mesh.positions, mesh.normals, mesh.colors, mesh.texcoords,
                         mesh.triangle_count, mesh.indices);
-        if (d && set_item(d, "texture", mesh_texture(&mesh)) < 0) {
+        if (d && (set_item(d, "texture", mesh_texture(&mesh, &warnings)) < 0 ||
+                  set_item(d, "warnings", sr_py_take_warnings(&warnings)) < 0)) {
             Py_CLEAR(d);
         }
     }
+    sr_py_drop_warnings(&warnings);
     Py_DECREF(path_obj);
     sr_destroy_mesh(ctx, &mesh);
     sr_destroy_context(ctx);
@@ -514,8 +516,10 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     }
     /* animation -1: the rest pose; the library checks the index and the
      * time (ValueError). */
+    sr_py_warnings warnings = { 0 };
     sr_load_desc desc = { .pose = animation >= 0 ? SR_POSE_ANIMATION : SR_POSE_REST,
-                          .animation = animation, .animation_time = time };
+                          .animation = animation, .animation_time = time,
+                          .warn = sr_py_keep_warning, .user = &warnings };
     sr_context *ctx = NULL;
     sr_scene *scene = NULL;
     sr_io_error err = { { 0 } };
@@ -534,6 +538,10 @@ PyObject *sr_py_load_scene(PyObject *self, PyObject *args)
     } else if (apply_variant(scene, variant, PyBytes_AS_STRING(path_obj)) == 0) {
         d = scene_dict(scene);
     }
+    if (d && set_item(d, "warnings", sr_py_take_warnings(&warnings)) < 0) {
+        Py_CLEAR(d);
+    }
+    sr_py_drop_warnings(&warnings);
     Py_DECREF(path_obj);
     PyObject *gltf = d ? PyDict_GetItemString(d, "gltf") : NULL;
     if (gltf == Py_True) {

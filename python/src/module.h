@@ -177,6 +177,20 @@ const char *sr_py_why(sr_result r);
 /* A message of the library as str: a name in it need not be UTF-8, and
  * one cut from the left may start inside a character. */
 PyObject *sr_py_message_text(const char *message);
+
+/* A reader's warnings, kept as they come (warning_list.c). */
+typedef struct sr_py_warnings {
+    char **lines;
+    int count, capacity;
+    bool lost;          /* a line that could not be kept (no memory) */
+} sr_py_warnings;
+/* A reader's warn callback, user an sr_py_warnings: runs without the GIL. */
+void sr_py_keep_warning(void *user, const char *message);
+/* The kept lines as a new list of str, emptying w; NULL with an exception
+ * set (MemoryError when a line was lost). */
+PyObject *sr_py_take_warnings(sr_py_warnings *w);
+/* The kept lines freed, unread. */
+void sr_py_drop_warnings(sr_py_warnings *w);
 /* An (h, w, 4) uint8 array over the RGBA pixels px, which it takes over
  * and frees (they come from malloc: the readers', render_svg's); NULL on
  * failure, px freed. */

@@ -16,46 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The warnings of one render, kept until the GIL is held again (the
- * callback runs without it).  The reader gives at most 65. */
-typedef struct warning_list {
-    char *lines[72];
-    int count;
-    bool lost;          /* a line that could not be kept (no memory) */
-} warning_list;
-
-static void keep_warning(void *user, const char *message)
-{
-    warning_list *w = user;
-    char *copy = NULL;
-    if (w->count < (int)(sizeof w->lines / sizeof w->lines[0])) {
-        copy = strdup(message);
-    }
-    if (!copy) {
-        w->lost = true;
-        return;
-    }
-    w->lines[w->count++] = copy;
-}
-
-/* The kept lines as a list of str, freeing them; NULL with an exception set on failure. */
-static PyObject *take_warnings(warning_list *w)
-{
-    PyObject *list = PyList_New(0);
-    for (int i = 0; i < w->count; i++) {
-        if (list) {
-            PyObject *s = sr_py_message_text(w->lines[i]);
-            if (!s || PyList_Append(list, s) < 0) {
-                Py_CLEAR(list);
-            }
-            Py_XDECREF(s);
-        }
-        free(w->lines[i]);
-    }
-    w->count = 0;
-    return list;
-}
-
 /* The exception set, taken out as an object; NULL when none could be made. */
 static PyObject *take_error(void)
 {
@@ -137,7 +97,7 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         return sr_py_io_error(SR_INVALID_ARG, &err, NULL);
     }
     uint64_t counted = (uint64_t)width * (uint64_t)height * 8;
-    warning_list warnings = { .count = 0 };
+    sr_py_warnings warnings = { 0 };
     sr_svg_desc desc = {
         .name = name_obj ? PyBytes_AS_STRING(name_obj) : NULL,
         .width = width,
@@ -145,7 +105,7 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
         .scale = scale,
         .background = { bg[0], bg[1], bg[2], bg[3] },
         .max_layer_bytes = limit.bytes > counted ? limit.bytes - counted : 1, /* 0: no limit */
-        .warn = keep_warning,
+        .warn = sr_py_keep_warning,
         .warn_user = &warnings,
     };
     sr_framebuffer *fb = NULL;
@@ -178,7 +138,7 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
     if (data.obj) {
         PyBuffer_Release(&data);
     }
-    PyObject *lines = take_warnings(&warnings);
+    PyObject *lines = sr_py_take_warnings(&warnings);
     PyObject *result = NULL;
     if (r != SR_OK) {
         free(px);
@@ -203,10 +163,6 @@ PyObject *sr_py_render_svg(PyObject *self, PyObject *args)
     } else {
         PyObject *image = sr_py_image_array(px, w, h);
         result = image ? Py_BuildValue("(NOO)", image, lines, Py_None) : NULL;
-    }
-    if (warnings.lost && result) {
-        Py_DECREF(result);
-        result = PyErr_NoMemory();
     }
     if (lines && r != SR_OK) {
         /* The failure goes back as an object after the warnings, which
