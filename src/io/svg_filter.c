@@ -10,6 +10,7 @@
  * scale with the transform along each axis; offsets map through it
  * exactly.  Caller's thread; no state outside the job. */
 #include "io/svg.h"
+#include "math/affine2.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -1324,12 +1325,12 @@ static void turbulence(fctx *fc, const svg_node *n, const int out_sub[4], float 
     }
     /* pixels -> user space, noise at each pixel's corner (as resvg samples it) */
     const double *m = fc->job->m;
-    double det = m[0] * m[3] - m[1] * m[2];
-    if (det == 0) {
+    double inv[6];
+    if (!sr__affine2_invert(m, 0, inv)) {
         free(t);
         return;
     }
-    double ia = m[3] / det, ib = -m[1] / det, ic = -m[2] / det, id = m[0] / det;
+    double ia = inv[0], ib = inv[1], ic = inv[2], id = inv[3];
     for (int y = 0; y < fc->rh; y++) {
         for (int x = 0; x < fc->rw; x++) {
             double px = x + fc->rx - m[4], py = y + fc->ry - m[5];
