@@ -136,18 +136,6 @@ static inline float sr__acos(float x)
     return x < 0.0f ? SR__PI - r : r;
 }
 
-/* Image coordinates of a unit direction, in pixels of a w x h image
- * (pixel centres at +0.5): px from u = 1/2 + atan2(z, x) / 2 pi, py from
- * t = acos(y) / pi, the same as 1/2 - asin(y) / pi. */
-static inline void sr__equirect_coords(float x, float y, float z, int w, int h, float *px,
-                                       float *py)
-{
-    float u = 0.5f + sr__atan2(z, x) * (0.5f / SR__PI);
-    float t = sr__acos(y) * (1.0f / SR__PI);
-    *px = u * (float)w;
-    *py = t * (float)h;
-}
-
 /* Bilinear sample at pixel coordinates (px, py): wraps in x, clamps in y. */
 static inline void sr__equirect_bilinear(const sr__equirect *e, float px, float py, float out[3])
 {
@@ -171,15 +159,6 @@ static inline void sr__equirect_bilinear(const sr__equirect *e, float px, float 
         out[c] = w00 * r0[x0 * 3 + c] + w10 * r0[x1 * 3 + c] + w01 * r1[x0 * 3 + c] +
                  w11 * r1[x1 * 3 + c];
     }
-}
-
-/* A unit direction's bilinear sample. */
-static inline void sr__equirect_sample(const sr__equirect *e, float x, float y, float z,
-                                       float out[3])
-{
-    float px, py;
-    sr__equirect_coords(x, y, z, e->w, e->h, &px, &py);
-    sr__equirect_bilinear(e, px, py, out);
 }
 
 /* The unit direction through the centre of pixel (i, j) of a w x h image. */
