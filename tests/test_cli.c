@@ -3755,6 +3755,9 @@ SR_TEST(ground_shadow_falls_away_from_the_key_light)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
+    if (!sr_test_models_dir()) {
+        SKIP("no shared models directory (the bunny)");
+    }
     char dir[1024];
     fresh_dir("ground_shadow", dir, sizeof dir);
     int w, h;
@@ -3799,6 +3802,9 @@ SR_TEST(background_environment_shows_the_studio)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
+    if (!sr_test_models_dir()) {
+        SKIP("no shared models directory (the bunny)");
+    }
     char dir[1024];
     fresh_dir("background_env", dir, sizeof dir);
     const char *kinds[2] = { "environment", "blur" };
@@ -3835,6 +3841,9 @@ SR_TEST(shadows_are_off_on_a_model_alone_unless_asked)
 #ifndef SR_CLI_PATH
     SKIP("the softrast tool is not part of this build");
 #else
+    if (!sr_test_models_dir()) {
+        SKIP("no shared models directory (the bunny)");
+    }
     char dir[1024];
     fresh_dir("model_shadows", dir, sizeof dir);
     /* --turn 0 and --exposure 0 change nothing: the default. */
